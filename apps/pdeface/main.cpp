@@ -1,0 +1,221 @@
+// pdeface: the command line. It maps arguments onto library calls and prints their outcome; no logic here.
+
+#include "pdeface/core/sample_face.hpp"
+#include "pdeface/core/summary.hpp"
+#include "pdeface/formats/formats.hpp"
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace fs = std::filesystem;
+using namespace pdeface;
+
+namespace {
+
+constexpr int kDataError = 1;  // the input or output could not be read, converted or written
+constexpr int kUsageError = 2; // the command line itself is wrong
+
+void print_notes(const Notes& notes) {
+  for (const std::string& note : notes) fmt::print(stderr, "pdeface: note: {}\n", note);
+}
+
+int fail(const Error& error) {
+  fmt::print(stderr, "pdeface: error: {}\n", error.to_string());
+  return kDataError;
+}
+
+std::optional<formats::Format> parse_format(const std::string& name) {
+  if (name.empty()) return std::nullopt;
+  return formats::format_from_path(fs::path("x." + name));
+}
+
+// ---- info ----------------------------------------------------------------------------------------------
+
+struct InfoRequest {
+  std::vector<fs::path> files;
+  bool json = false;
+};
+
+nlohmann::json to_json(const fs::path& file, const formats::LoadedMesh& loaded, const MeshSummary& s) {
+  nlohmann::json j;
+  j["file"] = file.string();
+  j["format"] = formats::info(loaded.format).name;
+  j["bytes"] = loaded.bytes;
+  j["vertices"] = s.vertices;
+  j["triangles"] = s.triangles;
+  j["point_cloud"] = s.triangles == 0;
+  j["units"] = to_string(s.units);
+  j["attributes"] = {{"normals", s.normals}, {"colors", s.colors}, {"texcoords", s.texcoords}};
+  if (!s.box.empty()) {
+    j["bbox"] = {{"min", {s.box.min.x(), s.box.min.y(), s.box.min.z()}},
+                 {"max", {s.box.max.x(), s.box.max.y(), s.box.max.z()}},
+                 {"size", {s.box.size().x(), s.box.size().y(), s.box.size().z()}}};
+  }
+  j["components"] = s.topology.components;
+  j["boundary_loops"] = s.topology.boundary_loops;
+  j["unreferenced_vertices"] = s.topology.unreferenced_vertices;
+  j["non_manifold_triangles"] = s.topology.non_manifold_triangles;
+  return j;
+}
+
+void print_text(const fs::path& file, const formats::LoadedMesh& loaded, const MeshSummary& s) {
+  fmt::print("{}\n", file.string());
+  fmt::print("  format          {} ({} bytes)\n", formats::info(loaded.format).name, loaded.bytes);
+  fmt::print("  vertices        {}\n", s.vertices);
+  fmt::print("  triangles       {}{}\n", s.triangles, s.triangles == 0 ? " (point cloud)" : "");
+  std::string attributes;
+  for (auto [has, name] : {std::pair{s.normals, "normals"}, {s.colors, "colours"}, {s.texcoords, "texcoords"}})
+    if (has) attributes += attributes.empty() ? name : fmt::format(", {}", name);
+  fmt::print("  attributes      {}\n", attributes.empty() ? "positions only" : "positions, " + attributes);
+  fmt::print("  units           {}\n", to_string(s.units));
+  if (!s.box.empty()) {
+    const Vec3 size = s.box.size();
+    fmt::print("  bounding box    [{:.4g}, {:.4g}, {:.4g}] .. [{:.4g}, {:.4g}, {:.4g}]\n", s.box.min.x(),
+               s.box.min.y(), s.box.min.z(), s.box.max.x(), s.box.max.y(), s.box.max.z());
+    fmt::print("  size            {:.4g} x {:.4g} x {:.4g}\n", size.x(), size.y(), size.z());
+  }
+  if (s.triangles > 0) {
+    fmt::print("  components      {}\n", s.topology.components);
+    fmt::print("  boundary loops  {}\n", s.topology.boundary_loops);
+    if (s.topology.unreferenced_vertices > 0)
+      fmt::print("  unreferenced    {} vertices on no triangle\n", s.topology.unreferenced_vertices);
+    if (s.topology.non_manifold_triangles > 0)
+      fmt::print("  non-manifold    {} triangles\n", s.topology.non_manifold_triangles);
+  }
+}
+
+int run_info(const InfoRequest& request) {
+  int status = 0;
+  nlohmann::json all = nlohmann::json::array();
+  for (const fs::path& file : request.files) {
+    Notes notes;
+    Result<formats::LoadedMesh> loaded = formats::read_mesh(file, {}, &notes);
+    print_notes(notes);
+    if (!loaded) {
+      status = fail(loaded.error());
+      continue;
+    }
+    const MeshSummary summary = summarize(loaded->mesh);
+    if (request.json) all.push_back(to_json(file, *loaded, summary));
+    else print_text(file, *loaded, summary);
+  }
+  if (request.json) fmt::print("{}\n", all.dump(2));
+  return status;
+}
+
+// ---- convert -------------------------------------------------------------------------------------------
+
+struct ConvertRequest {
+  fs::path in;
+  fs::path out;
+  std::string from;
+  std::string to;
+  formats::WriteOptions write;
+};
+
+int run_convert(ConvertRequest request) {
+  Notes notes;
+  request.write.format = parse_format(request.to);
+  if (!request.to.empty() && !request.write.format)
+    return fail(make_error(ErrorCode::UnsupportedFormat, fmt::format("unknown output format '{}'", request.to)));
+  const formats::ReadOptions read{.format = parse_format(request.from)};
+  if (!request.from.empty() && !read.format)
+    return fail(make_error(ErrorCode::UnsupportedFormat, fmt::format("unknown input format '{}'", request.from)));
+  Result<formats::ConvertReport> report = formats::convert(request.in, request.out, read, request.write, &notes);
+  print_notes(notes);
+  if (!report) return fail(report.error());
+  fmt::print("{} ({}, {} bytes) -> {} ({}, {} bytes): {} vertices, {} triangles\n", request.in.string(),
+             formats::info(report->from).name, report->bytes_in, request.out.string(),
+             formats::info(report->to).name, report->bytes_out, report->vertices, report->triangles);
+  return 0;
+}
+
+// ---- sample --------------------------------------------------------------------------------------------
+
+struct SampleRequest {
+  fs::path out;
+  SampleFaceOptions face;
+  bool no_holes = false;
+  bool no_colors = false;
+  formats::WriteOptions write;
+};
+
+int run_sample(SampleRequest request) {
+  request.face.holes = !request.no_holes;
+  request.face.colors = !request.no_colors;
+  const Mesh mesh = sample_face(request.face);
+  Notes notes;
+  Result<std::size_t> written = formats::write_mesh(mesh, request.out, request.write, &notes);
+  print_notes(notes);
+  if (!written) return fail(written.error());
+  fmt::print("{}: sample face, {} vertices, {} triangles, {} bytes\n", request.out.string(), mesh.vertex_count(),
+             mesh.triangle_count(), *written);
+  return 0;
+}
+
+void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
+  cmd->add_option("--draco-bits", write.draco_bits, "Draco position quantisation bits (1..30)")
+      ->check(CLI::Range(1, 30))
+      ->capture_default_str();
+  cmd->add_option("--draco-level", write.draco_level, "Draco compression level (0..10; 0 keeps vertex order)")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
+  cmd->add_flag("--draco", write.draco_in_gltf, "GLB output: compress with KHR_draco_mesh_compression");
+  cmd->add_flag("--ascii", write.ascii, "PLY and STL output: ASCII instead of binary");
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"pdeface: 3D face scans to compact PDE surfaces and back, and conversion between mesh formats"};
+  app.set_version_flag("--version", std::string("pdeface ") + PDEFACE_VERSION);
+  app.require_subcommand(1);
+  app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
+    return fmt::format("pdeface{}: error: {} (see --help)\n",
+                       failed && failed->get_parent() ? " " + failed->get_name() : "", e.what());
+  });
+
+  InfoRequest info;
+  CLI::App* info_cmd = app.add_subcommand("info", "Describe mesh files: format, counts, units, extent, topology");
+  info_cmd->add_option("files", info.files, "Files to describe")->required()->check(CLI::ExistingPath);
+  info_cmd->add_flag("--json", info.json, "Print JSON for machines");
+
+  ConvertRequest convert;
+  CLI::App* convert_cmd = app.add_subcommand(
+      "convert", "Convert between formats chosen by extension: .wrl .obj .ply .off .stl .gltf .glb .drc");
+  convert_cmd->add_option("input", convert.in, "File to read")->required()->check(CLI::ExistingFile);
+  convert_cmd->add_option("output", convert.out, "File to write (replaced atomically)")->required();
+  convert_cmd->add_option("--from", convert.from, "Input format when the extension is misleading (e.g. ply)");
+  convert_cmd->add_option("--to", convert.to, "Output format when the extension is misleading (e.g. glb)");
+  add_write_options(convert_cmd, convert.write);
+
+  SampleRequest sample;
+  CLI::App* sample_cmd = app.add_subcommand("sample", "Write the built-in synthetic face scan (mm, frontal)");
+  sample_cmd->add_option("output", sample.out, "File to write, any writable format")->required();
+  sample_cmd->add_option("--spacing", sample.face.spacing_mm, "Grid step in mm")
+      ->check(CLI::Range(0.2, 20.0))
+      ->capture_default_str();
+  sample_cmd->add_option("--noise", sample.face.noise_mm, "Depth noise amplitude in mm")
+      ->check(CLI::Range(0.0, 10.0))
+      ->capture_default_str();
+  sample_cmd->add_option("--seed", sample.face.seed, "Varies the outline and the noise")->capture_default_str();
+  sample_cmd->add_flag("--no-holes", sample.no_holes, "Do not punch holes");
+  sample_cmd->add_flag("--no-colors", sample.no_colors, "Do not add vertex colours");
+  add_write_options(sample_cmd, sample.write);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : kUsageError; // --help and --version exit 0
+  }
+  if (info_cmd->parsed()) return run_info(info);
+  if (convert_cmd->parsed()) return run_convert(convert);
+  if (sample_cmd->parsed()) return run_sample(sample);
+  return 0;
+}

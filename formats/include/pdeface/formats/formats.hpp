@@ -1,0 +1,89 @@
+#pragma once
+//! \file
+//! Reading and writing any supported format by file name: the format is chosen by extension (and, for
+//! reading, checked against the content), bytes are parsed in memory, and files are written atomically.
+
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/core/result.hpp"
+
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string_view>
+
+namespace pdeface::formats {
+
+enum class Format { Vrml, Obj, Ply, Off, Stl, Gltf, Glb, Draco };
+
+//! What a format is and what it can hold.
+struct FormatInfo {
+  Format format;
+  std::string_view name;                          //!< "VRML", "PLY", ...
+  std::span<const std::string_view> extensions;   //!< lowercase, with the dot; the first is canonical
+  bool faces = true;      //!< can hold triangles (all can hold points)
+  bool point_clouds = true; //!< can hold vertices without faces
+  bool normals = false;
+  bool colors = false;
+  bool texcoords = false;
+  bool lossy = false;     //!< positions are quantised (Draco)
+};
+
+//! Every format, in a stable order.
+[[nodiscard]] std::span<const FormatInfo> all_formats();
+[[nodiscard]] const FormatInfo& info(Format format);
+//! The format an extension names (case-insensitive), if any.
+[[nodiscard]] std::optional<Format> format_from_path(const std::filesystem::path& path);
+//! The format the first bytes identify (magic numbers and headers), if any. OBJ and STL have no magic
+//! and are only recognised by the most likely first statement.
+[[nodiscard]] std::optional<Format> format_from_content(std::string_view bytes);
+
+struct ReadOptions {
+  std::optional<Format> format; //!< override detection
+};
+
+struct LoadedMesh {
+  Mesh mesh;
+  Format format;
+  std::size_t bytes = 0; //!< size of the file read
+};
+
+//! Reads a mesh or point cloud. The format comes from `options.format`, else the content, else the
+//! extension; a file whose content contradicts its extension is read by its content, with a note.
+[[nodiscard]] Result<LoadedMesh> read_mesh(const std::filesystem::path& path, const ReadOptions& options = {},
+                                           Notes* notes = nullptr);
+//! The same from bytes in memory; `source` names them in errors and picks the format by extension.
+[[nodiscard]] Result<LoadedMesh> read_mesh(std::string_view bytes, std::string_view source,
+                                           const ReadOptions& options = {}, Notes* notes = nullptr);
+
+struct WriteOptions {
+  std::optional<Format> format;  //!< override the extension
+  bool ascii = false;            //!< PLY and STL: ASCII instead of binary
+  bool draco_in_gltf = false;    //!< GLB: compress with KHR_draco_mesh_compression
+  int draco_bits = 14;           //!< Draco and Draco-in-glTF: position quantisation bits (1..30)
+  int draco_level = 7;           //!< Draco compression level (0..10; 0 keeps vertex order)
+};
+
+//! Encodes a mesh in the format of `path` (or `options.format`). Attributes the format cannot hold are
+//! dropped, each with a note. Errors: `UnsupportedFormat`, `InvalidArgument`, errors from the encoder.
+[[nodiscard]] Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                                              const WriteOptions& options = {}, Notes* notes = nullptr);
+
+//! `encode_mesh`, then an atomic write: on any error no file is left at `path`.
+[[nodiscard]] Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                                             const WriteOptions& options = {}, Notes* notes = nullptr);
+
+struct ConvertReport {
+  Format from;
+  Format to;
+  std::size_t bytes_in = 0;
+  std::size_t bytes_out = 0;
+  std::size_t vertices = 0;
+  std::size_t triangles = 0;
+};
+
+//! `read_mesh(in)` then `write_mesh(out)`: what `pdeface convert` does.
+[[nodiscard]] Result<ConvertReport> convert(const std::filesystem::path& in, const std::filesystem::path& out,
+                                            const ReadOptions& read_options = {},
+                                            const WriteOptions& write_options = {}, Notes* notes = nullptr);
+
+} // namespace pdeface::formats

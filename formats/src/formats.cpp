@@ -1,0 +1,213 @@
+#include "pdeface/formats/formats.hpp"
+
+#include "pdeface/core/file.hpp"
+#include "pdeface/draco/draco.hpp"
+#include "pdeface/gltf/gltf.hpp"
+#include "pdeface/obj/obj.hpp"
+#include "pdeface/ply/ply.hpp"
+#include "pdeface/vrml/vrml.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <string>
+
+namespace pdeface::formats {
+namespace {
+
+constexpr std::array<std::string_view, 2> kVrmlExt{".wrl", ".vrml"};
+constexpr std::array<std::string_view, 1> kObjExt{".obj"};
+constexpr std::array<std::string_view, 1> kPlyExt{".ply"};
+constexpr std::array<std::string_view, 1> kOffExt{".off"};
+constexpr std::array<std::string_view, 1> kStlExt{".stl"};
+constexpr std::array<std::string_view, 1> kGltfExt{".gltf"};
+constexpr std::array<std::string_view, 1> kGlbExt{".glb"};
+constexpr std::array<std::string_view, 1> kDracoExt{".drc"};
+
+// name, extensions, faces, point clouds, normals, colours, texcoords, lossy
+constexpr std::array<FormatInfo, 8> kFormats{{
+    {Format::Vrml, "VRML", kVrmlExt, true, true, true, true, true, false},
+    {Format::Obj, "OBJ", kObjExt, true, true, true, true, true, false},
+    {Format::Ply, "PLY", kPlyExt, true, true, true, true, true, false},
+    {Format::Off, "OFF", kOffExt, true, true, false, false, false, false},
+    {Format::Stl, "STL", kStlExt, true, false, false, false, false, false},
+    {Format::Gltf, "glTF", kGltfExt, true, true, true, true, false, false},
+    {Format::Glb, "GLB", kGlbExt, true, true, true, true, false, false},
+    {Format::Draco, "Draco", kDracoExt, true, true, true, true, true, true},
+}};
+
+std::string lowercase(std::string s) {
+  std::ranges::transform(s, s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return s;
+}
+
+bool starts_with_ci(std::string_view bytes, std::string_view prefix) {
+  if (bytes.size() < prefix.size()) return false;
+  return lowercase(std::string(bytes.substr(0, prefix.size()))) == prefix;
+}
+
+std::string_view skip_space(std::string_view s) {
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  return s;
+}
+
+Result<Mesh> decode(Format format, std::string_view bytes, std::string_view source, Notes* notes) {
+  switch (format) {
+  case Format::Vrml: return vrml::read(bytes, source, notes);
+  case Format::Obj: return obj::read(bytes, source, notes);
+  case Format::Ply: return ply::read(bytes, source, notes);
+  case Format::Off: return off::read(bytes, source, notes);
+  case Format::Stl: return stl::read(bytes, source, notes);
+  case Format::Gltf:
+  case Format::Glb: return gltf::read(bytes, source, notes);
+  case Format::Draco: return draco::read(bytes, source, notes);
+  }
+  return make_error(ErrorCode::UnsupportedFormat, "unknown format", std::string(source));
+}
+
+// Drops what the target format cannot hold, with a note for each attribute lost.
+Mesh fit_to(const FormatInfo& fi, const Mesh& mesh, Notes* notes) {
+  Mesh out = mesh;
+  auto drop = [&](auto& attribute, bool supported, std::string_view what) {
+    if (attribute.empty() || supported) return;
+    attribute.clear();
+    if (notes) notes->push_back(fmt::format("{} dropped: {} cannot store them", what, fi.name));
+  };
+  drop(out.normals, fi.normals, "normals");
+  drop(out.colors, fi.colors, "vertex colours");
+  drop(out.texcoords, fi.texcoords, "texture coordinates");
+  return out;
+}
+
+} // namespace
+
+std::span<const FormatInfo> all_formats() { return kFormats; }
+
+const FormatInfo& info(Format format) { return kFormats[static_cast<std::size_t>(format)]; }
+
+std::optional<Format> format_from_path(const std::filesystem::path& path) {
+  const std::string ext = lowercase(path.extension().string());
+  for (const FormatInfo& fi : kFormats)
+    if (std::ranges::find(fi.extensions, ext) != fi.extensions.end()) return fi.format;
+  return std::nullopt;
+}
+
+std::optional<Format> format_from_content(std::string_view bytes) {
+  if (bytes.starts_with("#VRML")) return Format::Vrml;
+  if (bytes.starts_with("glTF")) return Format::Glb;
+  if (bytes.starts_with("DRACO")) return Format::Draco;
+  if (bytes.starts_with("ply\n") || bytes.starts_with("ply\r")) return Format::Ply;
+  if (bytes.starts_with("OFF") || bytes.starts_with("NOFF") || bytes.starts_with("COFF") ||
+      bytes.starts_with("STOFF"))
+    return Format::Off;
+  const std::string_view text = skip_space(bytes);
+  if (text.starts_with("{") && text.find("\"asset\"") != std::string_view::npos) return Format::Gltf;
+  if (starts_with_ci(text, "solid") && text.find("facet") != std::string_view::npos) return Format::Stl;
+  if (text.starts_with("v ") || text.starts_with("mtllib") || text.starts_with("o ") ||
+      text.starts_with("g ") || (text.starts_with("#") && text.find("\nv ") != std::string_view::npos))
+    return Format::Obj;
+  return std::nullopt;
+}
+
+Result<LoadedMesh> read_mesh(std::string_view bytes, std::string_view source, const ReadOptions& options,
+                             Notes* notes) {
+  const std::optional<Format> by_name = format_from_path(std::filesystem::path(source));
+  std::optional<Format> format = options.format;
+  if (!format) {
+    const std::optional<Format> by_content = format_from_content(bytes);
+    auto same_family = [](Format a, Format b) {
+      auto family = [](Format f) { return f == Format::Glb ? Format::Gltf : f; };
+      return family(a) == family(b);
+    };
+    if (by_content && by_name && !same_family(*by_content, *by_name) && notes)
+      notes->push_back(fmt::format("{}: the content is {}, not {} as the extension says", source,
+                                   info(*by_content).name, info(*by_name).name));
+    format = by_content ? by_content : by_name;
+  }
+  if (!format) {
+    if (bytes.empty()) return make_error(ErrorCode::Empty, "the file is empty", std::string(source));
+    return make_error(ErrorCode::UnsupportedFormat,
+                      "unknown format: neither the extension nor the content names one we read "
+                      "(.wrl .obj .ply .off .stl .gltf .glb .drc)",
+                      std::string(source));
+  }
+  Result<Mesh> mesh = decode(*format, bytes, source, notes);
+  if (!mesh) return std::move(mesh).error();
+  if (mesh->name.empty()) mesh->name = std::filesystem::path(source).stem().string();
+  return LoadedMesh{std::move(mesh).value(), *format, bytes.size()};
+}
+
+Result<LoadedMesh> read_mesh(const std::filesystem::path& path, const ReadOptions& options, Notes* notes) {
+  Result<std::string> bytes = read_file(path);
+  if (!bytes) return std::move(bytes).error();
+  return read_mesh(*bytes, source_name(path), options, notes);
+}
+
+Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options,
+                                Notes* notes) {
+  const std::string source = source_name(path);
+  const std::optional<Format> format = options.format ? options.format : format_from_path(path);
+  if (!format)
+    return make_error(ErrorCode::UnsupportedFormat,
+                      fmt::format("cannot tell the output format from the extension '{}' "
+                                  "(use .wrl .obj .ply .off .stl .glb .gltf .drc)",
+                                  path.extension().string()),
+                      source);
+  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  const FormatInfo& fi = info(*format);
+  if (mesh.is_point_cloud() && !fi.point_clouds)
+    return make_error(ErrorCode::InvalidArgument,
+                      fmt::format("{} cannot hold a point cloud (the mesh has no triangles)", fi.name), source);
+  const Mesh fitted = fit_to(fi, mesh, notes);
+  const draco::WriteOptions draco_options{.position_bits = options.draco_bits, .level = options.draco_level};
+  if (*format == Format::Draco || options.draco_in_gltf) {
+    if (Result<void> ok = draco::check(draco_options); !ok) return std::move(ok).error();
+  }
+
+  Result<std::string> bytes = [&]() -> Result<std::string> {
+    switch (*format) {
+    case Format::Vrml: return vrml::write(fitted, {}, notes);
+    case Format::Obj: return obj::write(fitted, {}, notes);
+    case Format::Ply: return ply::write(fitted, {.binary = !options.ascii}, notes);
+    case Format::Off: return off::write(fitted, notes);
+    case Format::Stl: return stl::write(fitted, {.binary = !options.ascii}, notes);
+    case Format::Gltf:
+    case Format::Glb:
+      return gltf::write(fitted,
+                         {.binary = *format == Format::Glb,
+                          .draco = options.draco_in_gltf ? std::optional(draco_options) : std::nullopt},
+                         notes);
+    case Format::Draco: return draco::write(fitted, draco_options, notes);
+    }
+    return make_error(ErrorCode::UnsupportedFormat, "unknown format", source);
+  }();
+  if (!bytes) {
+    Error e = std::move(bytes).error();
+    if (e.source.empty()) e.source = source;
+    return e;
+  }
+  return bytes;
+}
+
+Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options,
+                               Notes* notes) {
+  Result<std::string> bytes = encode_mesh(mesh, path, options, notes);
+  if (!bytes) return std::move(bytes).error();
+  if (Result<void> written = write_file_atomic(path, *bytes); !written) return std::move(written).error();
+  return bytes->size();
+}
+
+Result<ConvertReport> convert(const std::filesystem::path& in, const std::filesystem::path& out,
+                              const ReadOptions& read_options, const WriteOptions& write_options, Notes* notes) {
+  Result<LoadedMesh> loaded = read_mesh(in, read_options, notes);
+  if (!loaded) return std::move(loaded).error();
+  const Format to = write_options.format ? *write_options.format : format_from_path(out).value_or(loaded->format);
+  Result<std::size_t> written = write_mesh(loaded->mesh, out, write_options, notes);
+  if (!written) return std::move(written).error();
+  return ConvertReport{loaded->format, to, loaded->bytes, *written, loaded->mesh.vertex_count(),
+                       loaded->mesh.triangle_count()};
+}
+
+} // namespace pdeface::formats

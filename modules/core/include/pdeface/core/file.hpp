@@ -1,0 +1,23 @@
+#pragma once
+//! \file
+//! Whole-file reads and atomic writes: readers parse from memory, writers never leave half a file.
+
+#include "pdeface/core/result.hpp"
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace pdeface {
+
+//! The bytes of a file. Errors: `Io` (cannot open or read; a directory).
+[[nodiscard]] Result<std::string> read_file(const std::filesystem::path& path);
+
+//! Writes `bytes` to a temporary file beside `path`, then renames it over `path`: readers of `path` see
+//! either the old file or the complete new one, and a failure leaves nothing behind.
+[[nodiscard]] Result<void> write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
+
+//! The file name to put in error messages: the path as the user gave it.
+[[nodiscard]] inline std::string source_name(const std::filesystem::path& path) { return path.string(); }
+
+} // namespace pdeface

@@ -1,0 +1,66 @@
+#pragma once
+// Helpers shared by the tests: fixture and real-scan paths, temporary folders.
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
+#include <random>
+#include <string>
+#include <string_view>
+
+namespace pdeface::test {
+
+//! tests/data: small fixtures we made ourselves.
+inline std::filesystem::path fixtures() { return PDEFACE_TEST_FIXTURES; }
+
+//! The folder of real scans: $PDEFACE_DATA, else the build's default (../shared/faces); nullopt if absent.
+inline std::optional<std::filesystem::path> faces_dir() {
+  const char* env = std::getenv("PDEFACE_DATA");
+  std::filesystem::path dir = env && *env ? std::filesystem::path(env) : std::filesystem::path(PDEFACE_DEFAULT_FACES);
+  if (!std::filesystem::is_directory(dir)) return std::nullopt;
+  return dir;
+}
+
+//! The path of a real scan, or nullopt when the folder or the file is absent.
+inline std::optional<std::filesystem::path> face(std::string_view name) {
+  auto dir = faces_dir();
+  if (!dir) return std::nullopt;
+  auto path = *dir / name;
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  return path;
+}
+
+//! A fresh empty folder, removed with everything in it when the object dies.
+class TempDir {
+public:
+  TempDir() {
+    std::random_device rd;
+    path_ = std::filesystem::temp_directory_path() / ("pdeface-test-" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  [[nodiscard]] const std::filesystem::path& path() const { return path_; }
+  [[nodiscard]] std::filesystem::path operator/(std::string_view name) const { return path_ / name; }
+  //! Number of entries in the folder (to check that nothing was left behind).
+  [[nodiscard]] std::size_t entries() const {
+    return static_cast<std::size_t>(std::distance(std::filesystem::directory_iterator(path_), {}));
+  }
+
+private:
+  std::filesystem::path path_;
+};
+
+} // namespace pdeface::test
+
+//! Binds `var` to the real scan `name`, or skips the test (saying why) when ../shared/faces is absent.
+#define PDEFACE_FACE_OR_SKIP(var, name)                                                                  \
+  const auto var##_opt = ::pdeface::test::face(name);                                                    \
+  if (!var##_opt) GTEST_SKIP() << "real scan " << (name) << " not found (set PDEFACE_DATA)";            \
+  const std::filesystem::path& var = *var##_opt
