@@ -43,7 +43,7 @@ struct Hole {
 constexpr Hole kHoles[] = {{-47.0, 47.0, 3.0}, {21.0, -72.0, 2.4}, {54.0, -12.0, 3.6}, {-9.0, 71.0, 2.0}};
 
 Vec4f skin_colour(double x, double y) {
-  const double lips = std::max(bump(x, y, 0.0, -25.0, 20.0, 3.5), bump(x, y, 0.0, -36.0, 18.0, 4.0));
+  const double lips = std::max(bump(x, y, 0.0, -24.5, 15.0, 3.5), bump(x, y, 0.0, -36.5, 14.0, 4.0));
   const double brows = bump(x, y, -30.0, 39.0, 15.0, 3.0) + bump(x, y, 30.0, 39.0, 15.0, 3.0);
   const double r = 0.85 - 0.45 * brows + 0.02 * lips;
   const double g = 0.68 - 0.35 * brows - 0.25 * lips;
@@ -73,10 +73,11 @@ double sample_face_height(double x, double y) {
   z += ridge * fade * std::exp(-0.5 * (x / width) * (x / width));
   z += 5.0 * (bump(x, y, -14.0, -5.0, 5.0, 5.0) + bump(x, y, 14.0, -5.0, 5.0, 5.0)); // nose wings
 
-  z += 5.0 * bump(x, y, 0.0, -24.5, 21.0, 4.0);  // upper lip
-  z += 4.5 * bump(x, y, 0.0, -36.5, 19.0, 4.5);  // lower lip
-  z -= 2.0 * bump(x, y, 0.0, -30.5, 24.0, 1.4);  // mouth line
-  z += 5.0 * bump(x, y, 0.0, -64.0, 17.0, 9.0);  // chin
+  z += 3.5 * (bump(x, y, -32.0, 26.0, 7.0, 5.0) + bump(x, y, 32.0, 26.0, 7.0, 5.0));   // eyeballs
+  z += 5.0 * bump(x, y, 0.0, -24.5, 15.0, 4.0);  // upper lip
+  z += 4.5 * bump(x, y, 0.0, -36.5, 14.0, 4.5);  // lower lip
+  z -= 2.5 * bump(x, y, 0.0, -30.5, 17.0, 1.4);  // mouth line
+  z += 6.0 * bump(x, y, 0.0, -64.0, 15.0, 8.0);  // chin
   return z;
 }
 

@@ -1,0 +1,57 @@
+#include "pdeface/core/file.hpp"
+
+#include "pdeface_test.hpp"
+
+#include <fstream>
+
+namespace pdeface {
+namespace {
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), {}};
+}
+
+TEST(File, AtomicWriteCreatesAndReplaces) {
+  test::TempDir dir;
+  const auto path = dir / "out.bin";
+  ASSERT_TRUE(write_file_atomic(path, std::string_view("first\0x", 7)).ok());
+  EXPECT_EQ(slurp(path), std::string("first\0x", 7));
+  ASSERT_TRUE(write_file_atomic(path, "second").ok());
+  EXPECT_EQ(slurp(path), "second");
+  EXPECT_EQ(dir.entries(), 1U) << "no temporary file may be left beside the output";
+  auto bytes = read_file(path);
+  ASSERT_TRUE(bytes.ok());
+  EXPECT_EQ(*bytes, "second");
+}
+
+TEST(File, AtomicWriteIntoMissingFolderFailsAndLeavesNothing) {
+  test::TempDir dir;
+  auto r = write_file_atomic(dir / "no" / "such" / "out.ply", "x");
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::Io);
+  EXPECT_NE(r.error().source.find("out.ply"), std::string::npos);
+  EXPECT_EQ(dir.entries(), 0U);
+}
+
+TEST(File, ReadErrorsNameTheFile) {
+  test::TempDir dir;
+  auto missing = read_file(dir / "absent.wrl");
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().code, ErrorCode::Io);
+  EXPECT_NE(missing.error().to_string().find("absent.wrl: i/o error: cannot open"), std::string::npos);
+  auto folder = read_file(dir.path());
+  ASSERT_FALSE(folder);
+  EXPECT_EQ(folder.error().message, "is a directory, not a file");
+}
+
+TEST(File, ReadsEmptyFile) {
+  test::TempDir dir;
+  ASSERT_TRUE(write_file_atomic(dir / "empty", "").ok());
+  auto bytes = read_file(dir / "empty");
+  ASSERT_TRUE(bytes.ok());
+  EXPECT_TRUE(bytes->empty());
+}
+
+} // namespace
+} // namespace pdeface

@@ -1,0 +1,45 @@
+#include "pdeface/core/result.hpp"
+
+#include <gtest/gtest.h>
+
+#include <set>
+
+namespace pdeface {
+namespace {
+
+TEST(Error, NamesSourceLineAndColumn) {
+  const Error e = make_error(ErrorCode::Malformed, "expected '}'", "face.wrl", Location::at_line(12, 5));
+  EXPECT_EQ(e.to_string(), "face.wrl:12:5: malformed: expected '}'");
+}
+
+TEST(Error, NamesByteOffsetForBinaryData) {
+  const Error e = make_error(ErrorCode::Truncated, "vertex 7 ends past the data", "scan.ply", Location::at_byte(1234));
+  EXPECT_EQ(e.to_string(), "scan.ply: byte 1234: truncated: vertex 7 ends past the data");
+}
+
+TEST(Error, WithoutLocationOrSource) {
+  EXPECT_EQ(make_error(ErrorCode::Io, "cannot open").to_string(), "<input>: i/o error: cannot open");
+}
+
+TEST(Result, HoldsValueOrError) {
+  Result<int> good = 42;
+  ASSERT_TRUE(good.ok());
+  EXPECT_EQ(*good, 42);
+  Result<int> bad = make_error(ErrorCode::Empty, "nothing");
+  ASSERT_FALSE(bad.ok());
+  EXPECT_EQ(bad.error().code, ErrorCode::Empty);
+  Result<void> fine;
+  EXPECT_TRUE(fine.ok());
+  Result<void> broken = make_error(ErrorCode::NonFinite, "nan");
+  EXPECT_FALSE(broken);
+  EXPECT_EQ(broken.error().message, "nan");
+}
+
+TEST(ErrorCode, EveryCodeHasItsOwnName) {
+  std::set<std::string_view> names;
+  for (int c = 0; c <= static_cast<int>(ErrorCode::NoFace); ++c) names.insert(to_string(static_cast<ErrorCode>(c)));
+  EXPECT_EQ(names.size(), static_cast<std::size_t>(ErrorCode::NoFace) + 1);
+}
+
+} // namespace
+} // namespace pdeface
