@@ -1,0 +1,161 @@
+// The CLI driven as a user drives it: exit codes, what goes to stdout and stderr, files left behind.
+
+#include "pdeface_test.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <sys/wait.h>
+
+namespace pdeface {
+namespace {
+
+struct Outcome {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// Runs pdeface with `args` (each quoted for the shell) in a temporary folder of its own.
+class Cli : public ::testing::Test {
+protected:
+  Outcome run(const std::vector<std::string>& args) {
+    std::string cmd = quote(PDEFACE_EXE);
+    for (const auto& a : args) cmd += " " + quote(a);
+    const auto out = io_ / "stdout";
+    const auto err = io_ / "stderr";
+    cmd += " >" + quote(out.string()) + " 2>" + quote(err.string());
+    const int status = std::system(cmd.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
+  }
+  std::string path(std::string_view name) const { return (work_ / name).string(); }
+  std::size_t files() const { return work_.entries(); }
+
+  test::TempDir work_; // where outputs go: nothing else may appear here
+  test::TempDir io_;
+};
+
+std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::ranges::count(s, '\n')); }
+
+TEST_F(Cli, VersionAndHelp) {
+  Outcome v = run({"--version"});
+  EXPECT_EQ(v.exit_code, 0);
+  EXPECT_NE(v.out.find("pdeface 0."), std::string::npos);
+  for (const char* cmd : {"info", "convert", "sample"}) {
+    Outcome h = run({cmd, "--help"});
+    EXPECT_EQ(h.exit_code, 0) << cmd;
+    EXPECT_NE(h.out.find("Usage"), std::string::npos) << cmd;
+  }
+}
+
+TEST_F(Cli, UsageErrorsAreOneLineAndExitTwo) {
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{}, {"frobnicate"}, {"info"}, {"info", path("absent.ply")},
+        {"convert", "--draco-bits", "31", path("a.ply"), path("b.drc")}}) {
+    Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(lines(r.err), 1U) << r.err;
+    EXPECT_TRUE(r.err.starts_with("pdeface")) << r.err;
+  }
+}
+
+TEST_F(Cli, SampleThenInfo) {
+  Outcome s = run({"sample", path("face.ply")});
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  Outcome i = run({"info", path("face.ply")});
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  EXPECT_NE(i.out.find("format          PLY"), std::string::npos) << i.out;
+  EXPECT_NE(i.out.find("boundary loops  5"), std::string::npos) << i.out;
+  EXPECT_NE(i.out.find("units           mm"), std::string::npos) << i.out;
+}
+
+TEST_F(Cli, InfoJsonIsMachineReadable) {
+  ASSERT_EQ(run({"sample", path("face.obj")}).exit_code, 0);
+  ASSERT_EQ(run({"sample", "--no-holes", path("face.wrl")}).exit_code, 0);
+  Outcome r = run({"info", "--json", path("face.obj"), path("face.wrl")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.size(), 2U);
+  EXPECT_EQ(j[0]["format"], "OBJ");
+  EXPECT_EQ(j[1]["format"], "VRML");
+  EXPECT_EQ(j[0]["boundary_loops"], 5);
+  EXPECT_EQ(j[1]["boundary_loops"], 1);
+  EXPECT_EQ(j[0]["components"], 1);
+  EXPECT_GT(j[0]["vertices"].get<int>(), 12000);
+  EXPECT_EQ(j[0]["bbox"]["min"].size(), 3U);
+}
+
+TEST_F(Cli, ConvertEveryWritableFormatAndBack) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  const Outcome ref = run({"info", "--json", path("face.ply")});
+  const auto expected = nlohmann::json::parse(ref.out)[0];
+  for (const char* ext : {"wrl", "obj", "off", "stl", "glb", "gltf", "drc"}) {
+    const std::string out = path(std::string("face.") + ext);
+    Outcome c = run({"convert", path("face.ply"), out});
+    ASSERT_EQ(c.exit_code, 0) << ext << ": " << c.err;
+    Outcome i = run({"info", "--json", out});
+    ASSERT_EQ(i.exit_code, 0) << ext << ": " << i.err;
+    const auto got = nlohmann::json::parse(i.out)[0];
+    EXPECT_EQ(got["vertices"], expected["vertices"]) << ext;
+    EXPECT_EQ(got["triangles"], expected["triangles"]) << ext;
+  }
+}
+
+TEST_F(Cli, DroppedAttributesAreNoted) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  Outcome r = run({"convert", path("face.ply"), path("face.stl")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("vertex colours dropped: STL cannot store them"), std::string::npos) << r.err;
+}
+
+TEST_F(Cli, BadInputGivesOneLineNamingTheFileAndLeavesNoOutput) {
+  const auto bad = work_ / "broken.ply";
+  std::ofstream(bad) << "ply\nformat binary_little_endian 1.0\nelement vertex 1000\nproperty float x\n";
+  const std::size_t before = files();
+  Outcome r = run({"convert", bad.string(), path("out.glb")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(lines(r.err), 1U) << r.err;
+  EXPECT_NE(r.err.find("broken.ply"), std::string::npos) << r.err;
+  EXPECT_EQ(files(), before) << "no output, no temporary file";
+
+  std::ofstream(work_ / "garbage.wrl") << "\x01\x02 not a mesh at all";
+  Outcome g = run({"info", path("garbage.wrl")});
+  EXPECT_EQ(g.exit_code, 1);
+  EXPECT_NE(g.err.find("garbage.wrl"), std::string::npos) << g.err;
+}
+
+TEST_F(Cli, UnknownOutputExtensionIsRefusedBeforeWriting) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  const std::size_t before = files();
+  Outcome r = run({"convert", path("face.ply"), path("face.xyz")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("cannot tell the output format"), std::string::npos) << r.err;
+  EXPECT_EQ(files(), before);
+}
+
+TEST_F(Cli, InfoKeepsGoingAfterABadFile) {
+  ASSERT_EQ(run({"sample", path("face.obj")}).exit_code, 0);
+  std::ofstream(work_ / "empty.obj");
+  Outcome r = run({"info", path("empty.obj"), path("face.obj")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("empty.obj"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("face.obj"), std::string::npos) << r.out;
+}
+
+} // namespace
+} // namespace pdeface
