@@ -22,7 +22,8 @@ constexpr int kDataError = 1;  // the input or output could not be read, convert
 constexpr int kUsageError = 2; // the command line itself is wrong
 
 void print_notes(const Notes& notes) {
-  for (const std::string& note : notes) fmt::print(stderr, "pdeface: note: {}\n", note);
+  for (const std::string& note : notes)
+    fmt::print(stderr, "pdeface: note: {}\n", note);
 }
 
 int fail(const Error& error) {
@@ -70,7 +71,8 @@ void print_text(const fs::path& file, const formats::LoadedMesh& loaded, const M
   fmt::print("  vertices        {}\n", s.vertices);
   fmt::print("  triangles       {}{}\n", s.triangles, s.triangles == 0 ? " (point cloud)" : "");
   std::string attributes;
-  for (auto [has, name] : {std::pair{s.normals, "normals"}, {s.colors, "colours"}, {s.texcoords, "texcoords"}})
+  for (auto [has, name] :
+       {std::pair{s.normals, "normals"}, {s.colors, "colours"}, {s.texcoords, "texcoords"}})
     if (has) attributes += attributes.empty() ? name : fmt::format(", {}", name);
   fmt::print("  attributes      {}\n", attributes.empty() ? "positions only" : "positions, " + attributes);
   fmt::print("  units           {}\n", to_string(s.units));
@@ -102,8 +104,10 @@ int run_info(const InfoRequest& request) {
       continue;
     }
     const MeshSummary summary = summarize(loaded->mesh);
-    if (request.json) all.push_back(to_json(file, *loaded, summary));
-    else print_text(file, *loaded, summary);
+    if (request.json)
+      all.push_back(to_json(file, *loaded, summary));
+    else
+      print_text(file, *loaded, summary);
   }
   if (request.json) fmt::print("{}\n", all.dump(2));
   return status;
@@ -123,11 +127,14 @@ int run_convert(ConvertRequest request) {
   Notes notes;
   request.write.format = parse_format(request.to);
   if (!request.to.empty() && !request.write.format)
-    return fail(make_error(ErrorCode::UnsupportedFormat, fmt::format("unknown output format '{}'", request.to)));
+    return fail(
+        make_error(ErrorCode::UnsupportedFormat, fmt::format("unknown output format '{}'", request.to)));
   const formats::ReadOptions read{.format = parse_format(request.from)};
   if (!request.from.empty() && !read.format)
-    return fail(make_error(ErrorCode::UnsupportedFormat, fmt::format("unknown input format '{}'", request.from)));
-  Result<formats::ConvertReport> report = formats::convert(request.in, request.out, read, request.write, &notes);
+    return fail(
+        make_error(ErrorCode::UnsupportedFormat, fmt::format("unknown input format '{}'", request.from)));
+  Result<formats::ConvertReport> report =
+      formats::convert(request.in, request.out, read, request.write, &notes);
   print_notes(notes);
   if (!report) return fail(report.error());
   fmt::print("{} ({}, {} bytes) -> {} ({}, {} bytes): {} vertices, {} triangles\n", request.in.string(),
@@ -154,8 +161,8 @@ int run_sample(SampleRequest request) {
   Result<std::size_t> written = formats::write_mesh(mesh, request.out, request.write, &notes);
   print_notes(notes);
   if (!written) return fail(written.error());
-  fmt::print("{}: sample face, {} vertices, {} triangles, {} bytes\n", request.out.string(), mesh.vertex_count(),
-             mesh.triangle_count(), *written);
+  fmt::print("{}: sample face, {} vertices, {} triangles, {} bytes\n", request.out.string(),
+             mesh.vertex_count(), mesh.triangle_count(), *written);
   return 0;
 }
 
@@ -173,7 +180,8 @@ void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
 } // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"pdeface: 3D face scans to compact PDE surfaces and back, and conversion between mesh formats"};
+  CLI::App app{
+      "pdeface: 3D face scans to compact PDE surfaces and back, and conversion between mesh formats"};
   app.set_version_flag("--version", std::string("pdeface ") + PDEFACE_VERSION);
   app.require_subcommand(1);
   app.failure_message([](const CLI::App* failed, const CLI::Error& e) {
@@ -182,7 +190,8 @@ int main(int argc, char** argv) {
   });
 
   InfoRequest info;
-  CLI::App* info_cmd = app.add_subcommand("info", "Describe mesh files: format, counts, units, extent, topology");
+  CLI::App* info_cmd =
+      app.add_subcommand("info", "Describe mesh files: format, counts, units, extent, topology");
   info_cmd->add_option("files", info.files, "Files to describe")->required()->check(CLI::ExistingPath);
   info_cmd->add_flag("--json", info.json, "Print JSON for machines");
 
@@ -204,7 +213,8 @@ int main(int argc, char** argv) {
   sample_cmd->add_option("--noise", sample.face.noise_mm, "Depth noise amplitude in mm")
       ->check(CLI::Range(0.0, 10.0))
       ->capture_default_str();
-  sample_cmd->add_option("--seed", sample.face.seed, "Varies the outline and the noise")->capture_default_str();
+  sample_cmd->add_option("--seed", sample.face.seed, "Varies the outline and the noise")
+      ->capture_default_str();
   sample_cmd->add_flag("--no-holes", sample.no_holes, "Do not punch holes");
   sample_cmd->add_flag("--no-colors", sample.no_colors, "Do not add vertex colours");
   add_write_options(sample_cmd, sample.write);

@@ -49,7 +49,8 @@ bool starts_with_ci(std::string_view bytes, std::string_view prefix) {
 }
 
 std::string_view skip_space(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
+  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front())))
+    s.remove_prefix(1);
   return s;
 }
 
@@ -145,8 +146,8 @@ Result<LoadedMesh> read_mesh(const std::filesystem::path& path, const ReadOption
   return read_mesh(*bytes, source_name(path), options, notes);
 }
 
-Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options,
-                                Notes* notes) {
+Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                                const WriteOptions& options, Notes* notes) {
   const std::string source = source_name(path);
   const std::optional<Format> format = options.format ? options.format : format_from_path(path);
   if (!format)
@@ -159,7 +160,8 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
   const FormatInfo& fi = info(*format);
   if (mesh.is_point_cloud() && !fi.point_clouds)
     return make_error(ErrorCode::InvalidArgument,
-                      fmt::format("{} cannot hold a point cloud (the mesh has no triangles)", fi.name), source);
+                      fmt::format("{} cannot hold a point cloud (the mesh has no triangles)", fi.name),
+                      source);
   const Mesh fitted = fit_to(fi, mesh, notes);
   const draco::WriteOptions draco_options{.position_bits = options.draco_bits, .level = options.draco_level};
   if (*format == Format::Draco || options.draco_in_gltf) {
@@ -191,8 +193,8 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
   return bytes;
 }
 
-Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& path, const WriteOptions& options,
-                               Notes* notes) {
+Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                               const WriteOptions& options, Notes* notes) {
   Result<std::string> bytes = encode_mesh(mesh, path, options, notes);
   if (!bytes) return std::move(bytes).error();
   if (Result<void> written = write_file_atomic(path, *bytes); !written) return std::move(written).error();
@@ -200,13 +202,19 @@ Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& pa
 }
 
 Result<ConvertReport> convert(const std::filesystem::path& in, const std::filesystem::path& out,
-                              const ReadOptions& read_options, const WriteOptions& write_options, Notes* notes) {
+                              const ReadOptions& read_options, const WriteOptions& write_options,
+                              Notes* notes) {
   Result<LoadedMesh> loaded = read_mesh(in, read_options, notes);
   if (!loaded) return std::move(loaded).error();
-  const Format to = write_options.format ? *write_options.format : format_from_path(out).value_or(loaded->format);
+  const Format to =
+      write_options.format ? *write_options.format : format_from_path(out).value_or(loaded->format);
   Result<std::size_t> written = write_mesh(loaded->mesh, out, write_options, notes);
   if (!written) return std::move(written).error();
-  return ConvertReport{loaded->format, to, loaded->bytes, *written, loaded->mesh.vertex_count(),
+  return ConvertReport{loaded->format,
+                       to,
+                       loaded->bytes,
+                       *written,
+                       loaded->mesh.vertex_count(),
                        loaded->mesh.triangle_count()};
 }
 

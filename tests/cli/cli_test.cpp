@@ -27,7 +27,8 @@ std::string slurp(const std::filesystem::path& p) {
 
 std::string quote(const std::string& s) {
   std::string q = "'";
-  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  for (char c : s)
+    q += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return q + "'";
 }
 
@@ -36,7 +37,8 @@ class Cli : public ::testing::Test {
 protected:
   Outcome run(const std::vector<std::string>& args) {
     std::string cmd = quote(PDEFACE_EXE);
-    for (const auto& a : args) cmd += " " + quote(a);
+    for (const auto& a : args)
+      cmd += " " + quote(a);
     const auto out = io_ / "stdout";
     const auto err = io_ / "stderr";
     cmd += " >" + quote(out.string()) + " 2>" + quote(err.string());
@@ -65,7 +67,10 @@ TEST_F(Cli, VersionAndHelp) {
 
 TEST_F(Cli, UsageErrorsAreOneLineAndExitTwo) {
   for (const std::vector<std::string>& args :
-       {std::vector<std::string>{}, {"frobnicate"}, {"info"}, {"info", path("absent.ply")},
+       {std::vector<std::string>{},
+        {"frobnicate"},
+        {"info"},
+        {"info", path("absent.ply")},
         {"convert", "--draco-bits", "31", path("a.ply"), path("b.drc")}}) {
     Outcome r = run(args);
     EXPECT_EQ(r.exit_code, 2) << r.err;

@@ -27,7 +27,8 @@ TEST(Mesh, BoundingBox) {
 
 TEST(Mesh, VertexNormalsFollowWinding) {
   Mesh m = unit_square();
-  for (const Vec3f& n : vertex_normals(m)) EXPECT_TRUE(n.isApprox(Vec3f(0, 0, 1)));
+  for (const Vec3f& n : vertex_normals(m))
+    EXPECT_TRUE(n.isApprox(Vec3f(0, 0, 1)));
   m.positions.emplace_back(5, 5, 5); // on no triangle
   EXPECT_EQ(vertex_normals(m).back(), Vec3f::Zero());
 }
@@ -79,10 +80,11 @@ TEST(Topology, ClosedTetrahedronHasNoBoundary) {
 
 TEST(Topology, CountsPiecesLooseVerticesAndNonManifoldTriangles) {
   Mesh m = unit_square();
-  for (const Vec3& p : unit_square().positions) m.positions.push_back(p + Vec3(3, 0, 0));
+  for (const Vec3& p : unit_square().positions)
+    m.positions.push_back(p + Vec3(3, 0, 0));
   m.triangles.push_back({4, 5, 6});
-  m.positions.emplace_back(9, 9, 9);         // loose vertex
-  m.positions.emplace_back(0.5, -1.0, 1.0);  // a third triangle on edge 0-1: non-manifold
+  m.positions.emplace_back(9, 9, 9);        // loose vertex
+  m.positions.emplace_back(0.5, -1.0, 1.0); // a third triangle on edge 0-1: non-manifold
   m.triangles.push_back({0, 1, 9});
   const Topology t = topology(m);
   EXPECT_EQ(t.components, 2U);

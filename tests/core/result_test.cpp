@@ -13,7 +13,8 @@ TEST(Error, NamesSourceLineAndColumn) {
 }
 
 TEST(Error, NamesByteOffsetForBinaryData) {
-  const Error e = make_error(ErrorCode::Truncated, "vertex 7 ends past the data", "scan.ply", Location::at_byte(1234));
+  const Error e =
+      make_error(ErrorCode::Truncated, "vertex 7 ends past the data", "scan.ply", Location::at_byte(1234));
   EXPECT_EQ(e.to_string(), "scan.ply: byte 1234: truncated: vertex 7 ends past the data");
 }
 
@@ -37,7 +38,8 @@ TEST(Result, HoldsValueOrError) {
 
 TEST(ErrorCode, EveryCodeHasItsOwnName) {
   std::set<std::string_view> names;
-  for (int c = 0; c <= static_cast<int>(ErrorCode::NoFace); ++c) names.insert(to_string(static_cast<ErrorCode>(c)));
+  for (int c = 0; c <= static_cast<int>(ErrorCode::NoFace); ++c)
+    names.insert(to_string(static_cast<ErrorCode>(c)));
   EXPECT_EQ(names.size(), static_cast<std::size_t>(ErrorCode::NoFace) + 1);
 }
 

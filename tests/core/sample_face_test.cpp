@@ -27,8 +27,9 @@ TEST(SampleFace, NoseTipIsTheFrontmostPointNearTheOrigin) {
   const auto tip = std::ranges::max_element(m.positions, {}, [](const Vec3& p) { return p.z(); });
   EXPECT_LT(std::abs(tip->x()), 2.0);
   EXPECT_LT(std::abs(tip->y()), 2.0);
-  EXPECT_NEAR(sample_face_height(0, 0) - sample_face_height(40, 0), 33.0, 5.0); // nose stands out of the cheeks
-  EXPECT_LT(sample_face_height(32, 27), sample_face_height(32, 45)); // eye socket below the brow
+  EXPECT_NEAR(sample_face_height(0, 0) - sample_face_height(40, 0), 33.0,
+              5.0);                                                      // nose stands out of the cheeks
+  EXPECT_LT(sample_face_height(32, 27), sample_face_height(32, 45));     // eye socket below the brow
   EXPECT_GT(sample_face_height(0, -24.5), sample_face_height(0, -30.5)); // upper lip above the mouth line
 }
 
@@ -54,7 +55,8 @@ TEST(SampleFace, DeterministicAndSeeded) {
   const Mesh c = sample_face({.seed = 7});
   EXPECT_NE(a.positions.size(), c.positions.size()); // another outline
   const Mesh flat = sample_face({.noise_mm = 0.0});
-  for (const Vec3& p : flat.positions) ASSERT_DOUBLE_EQ(p.z(), sample_face_height(p.x(), p.y()));
+  for (const Vec3& p : flat.positions)
+    ASSERT_DOUBLE_EQ(p.z(), sample_face_height(p.x(), p.y()));
 }
 
 TEST(SampleFace, RejectsBadOptions) {

@@ -19,7 +19,8 @@ TEST(Formats, ExtensionsAreCaseInsensitive) {
 TEST(Formats, EveryFormatKnowsItsOwnExtensions) {
   for (const FormatInfo& fi : all_formats()) {
     EXPECT_EQ(&info(fi.format), &fi);
-    for (std::string_view ext : fi.extensions) EXPECT_EQ(format_from_path("f" + std::string(ext)), fi.format);
+    for (std::string_view ext : fi.extensions)
+      EXPECT_EQ(format_from_path("f" + std::string(ext)), fi.format);
   }
 }
 
@@ -61,7 +62,8 @@ TEST(Formats, AttributesAFormatCannotHoldAreDroppedWithANote) {
   Notes notes;
   auto stl = encode_mesh(face, "face.stl", {}, &notes);
   ASSERT_TRUE(stl.ok()) << stl.error().to_string();
-  EXPECT_EQ(notes, (Notes{"normals dropped: STL cannot store them", "vertex colours dropped: STL cannot store them"}));
+  EXPECT_EQ(notes, (Notes{"normals dropped: STL cannot store them",
+                          "vertex colours dropped: STL cannot store them"}));
   notes.clear();
   ASSERT_TRUE(encode_mesh(face, "face.ply", {}, &notes).ok());
   EXPECT_TRUE(notes.empty());

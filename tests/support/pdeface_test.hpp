@@ -18,7 +18,8 @@ inline std::filesystem::path fixtures() { return PDEFACE_TEST_FIXTURES; }
 //! The folder of real scans: $PDEFACE_DATA, else the build's default (../shared/faces); nullopt if absent.
 inline std::optional<std::filesystem::path> faces_dir() {
   const char* env = std::getenv("PDEFACE_DATA");
-  std::filesystem::path dir = env && *env ? std::filesystem::path(env) : std::filesystem::path(PDEFACE_DEFAULT_FACES);
+  std::filesystem::path dir =
+      env && *env ? std::filesystem::path(env) : std::filesystem::path(PDEFACE_DEFAULT_FACES);
   if (!std::filesystem::is_directory(dir)) return std::nullopt;
   return dir;
 }
@@ -37,7 +38,8 @@ class TempDir {
 public:
   TempDir() {
     std::random_device rd;
-    path_ = std::filesystem::temp_directory_path() / ("pdeface-test-" + std::to_string(rd()) + std::to_string(rd()));
+    path_ = std::filesystem::temp_directory_path() /
+            ("pdeface-test-" + std::to_string(rd()) + std::to_string(rd()));
     std::filesystem::create_directories(path_);
   }
   ~TempDir() {
@@ -60,7 +62,7 @@ private:
 } // namespace pdeface::test
 
 //! Binds `var` to the real scan `name`, or skips the test (saying why) when ../shared/faces is absent.
-#define PDEFACE_FACE_OR_SKIP(var, name)                                                                  \
-  const auto var##_opt = ::pdeface::test::face(name);                                                    \
-  if (!var##_opt) GTEST_SKIP() << "real scan " << (name) << " not found (set PDEFACE_DATA)";            \
+#define PDEFACE_FACE_OR_SKIP(var, name)                                                                      \
+  const auto var##_opt = ::pdeface::test::face(name);                                                        \
+  if (!var##_opt) GTEST_SKIP() << "real scan " << (name) << " not found (set PDEFACE_DATA)";                 \
   const std::filesystem::path& var = *var##_opt

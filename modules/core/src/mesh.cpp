@@ -41,7 +41,8 @@ Mesh to_mesh(PointCloud cloud) {
 
 Box bounding_box(std::span<const Vec3> points) {
   Box box;
-  for (const Vec3& p : points) box.extend(p);
+  for (const Vec3& p : points)
+    box.extend(p);
   return box;
 }
 
@@ -50,7 +51,8 @@ std::vector<Vec3f> vertex_normals(const Mesh& mesh) {
   for (const Triangle& t : mesh.triangles) {
     const Vec3& a = mesh.positions[t[0]];
     const Vec3 n = (mesh.positions[t[1]] - a).cross(mesh.positions[t[2]] - a); // |n| = 2 * area
-    for (std::uint32_t v : t) sum[v] += n;
+    for (std::uint32_t v : t)
+      sum[v] += n;
   }
   std::vector<Vec3f> normals(sum.size());
   for (std::size_t i = 0; i < sum.size(); ++i) {

@@ -6,7 +6,8 @@ HalfedgeConversion to_halfedge_mesh(const Mesh& mesh) {
   HalfedgeConversion out;
   HalfedgeMesh& om = out.mesh;
   om.reserve(mesh.positions.size(), 3 * mesh.triangles.size() / 2, mesh.triangles.size());
-  for (const Vec3& p : mesh.positions) om.add_vertex(HalfedgeMesh::Point(p.x(), p.y(), p.z()));
+  for (const Vec3& p : mesh.positions)
+    om.add_vertex(HalfedgeMesh::Point(p.x(), p.y(), p.z()));
   for (const Triangle& t : mesh.triangles) {
     const auto face = om.add_face(om.vertex_handle(t[0]), om.vertex_handle(t[1]), om.vertex_handle(t[2]));
     if (!face.is_valid()) ++out.rejected_triangles;
@@ -27,7 +28,8 @@ Mesh from_halfedge_mesh(const HalfedgeMesh& om) {
   for (auto f : om.faces()) {
     Triangle t{};
     int i = 0;
-    for (auto v : f.vertices()) t[i++] = index[v.idx()];
+    for (auto v : f.vertices())
+      t[i++] = index[v.idx()];
     mesh.triangles.push_back(t);
   }
   return mesh;

@@ -17,7 +17,8 @@ double bump(double x, double y, double cx, double cy, double sx, double sy) {
 
 // A hash of integers to [0, 1): reproducible across platforms, unlike std:: distributions.
 double unit_hash(std::uint32_t a, std::uint32_t b, std::uint32_t seed) {
-  std::uint64_t h = (static_cast<std::uint64_t>(a) << 32U) ^ b ^ (static_cast<std::uint64_t>(seed) * 0x9E3779B97F4A7C15ULL);
+  std::uint64_t h =
+      (static_cast<std::uint64_t>(a) << 32U) ^ b ^ (static_cast<std::uint64_t>(seed) * 0x9E3779B97F4A7C15ULL);
   h ^= h >> 33U;
   h *= 0xFF51AFD7ED558CCDULL;
   h ^= h >> 33U;
@@ -32,7 +33,8 @@ bool inside_outline(double x, double y, std::uint32_t seed) {
   const double dx = (x - cx) / ax, dy = (y - cy) / ay;
   const double theta = std::atan2(dy, dx);
   const double phase = 0.7 * static_cast<double>(seed % 97U);
-  const double wobble = 1.0 + 0.035 * std::sin(5.0 * theta + phase) + 0.02 * std::sin(11.0 * theta + 2.0 * phase) +
+  const double wobble = 1.0 + 0.035 * std::sin(5.0 * theta + phase) +
+                        0.02 * std::sin(11.0 * theta + 2.0 * phase) +
                         0.012 * std::sin(23.0 * theta + 3.0 * phase);
   return dx * dx + dy * dy < wobble * wobble;
 }
@@ -59,25 +61,26 @@ double sample_face_height(double x, double y) {
   const double ax = std::min(std::abs(x), 0.98 * r);
   double z = std::sqrt(r * r - ax * ax) - r - (y + 10.0) * (y + 10.0) / 450.0;
 
-  z += 4.0 * bump(x, y, 0.0, 62.0, 45.0, 22.0);                                   // forehead
-  z += 3.5 * (bump(x, y, -30.0, 39.0, 16.0, 5.5) + bump(x, y, 30.0, 39.0, 16.0, 5.5)); // brow ridges
+  z += 4.0 * bump(x, y, 0.0, 62.0, 45.0, 22.0);                                         // forehead
+  z += 3.5 * (bump(x, y, -30.0, 39.0, 16.0, 5.5) + bump(x, y, 30.0, 39.0, 16.0, 5.5));  // brow ridges
   z -= 10.0 * (bump(x, y, -32.0, 27.0, 12.0, 8.5) + bump(x, y, 32.0, 27.0, 12.0, 8.5)); // eye sockets
-  z += 3.0 * (bump(x, y, -42.0, 4.0, 14.0, 12.0) + bump(x, y, 42.0, 4.0, 14.0, 12.0)); // cheekbones
+  z += 3.0 * (bump(x, y, -42.0, 4.0, 14.0, 12.0) + bump(x, y, 42.0, 4.0, 14.0, 12.0));  // cheekbones
 
   // Nose: a ridge from the root (y = 36) to the tip (origin), widening downwards, with a sharp
   // underside and two wings.
   const double t = std::clamp(y / 36.0, -1.0, 1.0);
-  const double ridge = y >= 0.0 ? 24.0 - 14.0 * t * t * (3.0 - 2.0 * t) : 24.0 * std::exp(-0.5 * (y / 5.0) * (y / 5.0));
+  const double ridge =
+      y >= 0.0 ? 24.0 - 14.0 * t * t * (3.0 - 2.0 * t) : 24.0 * std::exp(-0.5 * (y / 5.0) * (y / 5.0));
   const double width = 5.5 + 3.5 * (1.0 - std::clamp(y, 0.0, 36.0) / 36.0);
   const double fade = y > 36.0 ? std::exp(-0.5 * ((y - 36.0) / 6.0) * ((y - 36.0) / 6.0)) : 1.0;
   z += ridge * fade * std::exp(-0.5 * (x / width) * (x / width));
   z += 5.0 * (bump(x, y, -14.0, -5.0, 5.0, 5.0) + bump(x, y, 14.0, -5.0, 5.0, 5.0)); // nose wings
 
-  z += 3.5 * (bump(x, y, -32.0, 26.0, 7.0, 5.0) + bump(x, y, 32.0, 26.0, 7.0, 5.0));   // eyeballs
-  z += 5.0 * bump(x, y, 0.0, -24.5, 15.0, 4.0);  // upper lip
-  z += 4.5 * bump(x, y, 0.0, -36.5, 14.0, 4.5);  // lower lip
-  z -= 2.5 * bump(x, y, 0.0, -30.5, 17.0, 1.4);  // mouth line
-  z += 6.0 * bump(x, y, 0.0, -64.0, 15.0, 8.0);  // chin
+  z += 3.5 * (bump(x, y, -32.0, 26.0, 7.0, 5.0) + bump(x, y, 32.0, 26.0, 7.0, 5.0)); // eyeballs
+  z += 5.0 * bump(x, y, 0.0, -24.5, 15.0, 4.0);                                      // upper lip
+  z += 4.5 * bump(x, y, 0.0, -36.5, 14.0, 4.5);                                      // lower lip
+  z -= 2.5 * bump(x, y, 0.0, -30.5, 17.0, 1.4);                                      // mouth line
+  z += 6.0 * bump(x, y, 0.0, -64.0, 15.0, 8.0);                                      // chin
   return z;
 }
 
@@ -104,7 +107,8 @@ Mesh sample_face(const SampleFaceOptions& options) {
       if (!inside_outline(x, y, options.seed)) continue;
       if (options.holes) {
         bool in_hole = false;
-        for (const Hole& hole : kHoles) in_hole |= (x - hole.x) * (x - hole.x) + (y - hole.y) * (y - hole.y) < hole.r * hole.r;
+        for (const Hole& hole : kHoles)
+          in_hole |= (x - hole.x) * (x - hole.x) + (y - hole.y) * (y - hole.y) < hole.r * hole.r;
         if (in_hole) continue;
       }
       const double noise = options.noise_mm * (2.0 * unit_hash(i, j, options.seed) - 1.0);
@@ -126,10 +130,14 @@ Mesh sample_face(const SampleFaceOptions& options) {
         mesh.triangles.push_back({a, c, d});
         mesh.triangles.push_back({a, d, b});
       } else if (present == 3) {
-        if (a == kNone) mesh.triangles.push_back({b, c, d});
-        else if (b == kNone) mesh.triangles.push_back({a, c, d});
-        else if (c == kNone) mesh.triangles.push_back({a, d, b});
-        else mesh.triangles.push_back({a, c, b});
+        if (a == kNone)
+          mesh.triangles.push_back({b, c, d});
+        else if (b == kNone)
+          mesh.triangles.push_back({a, c, d});
+        else if (c == kNone)
+          mesh.triangles.push_back({a, d, b});
+        else
+          mesh.triangles.push_back({a, c, b});
       }
     }
   }

@@ -18,7 +18,8 @@ Topology topology(const Mesh& mesh) {
   for (auto h : om.halfedges()) {
     if (!h.is_boundary() || seen[h.idx()]) continue;
     ++out.boundary_loops;
-    for (auto g = h; !seen[g.idx()]; g = g.next()) seen[g.idx()] = 1;
+    for (auto g = h; !seen[g.idx()]; g = g.next())
+      seen[g.idx()] = 1;
   }
 
   std::vector<char> reached(om.n_faces(), 0);

@@ -18,14 +18,14 @@ enum class Format { Vrml, Obj, Ply, Off, Stl, Gltf, Glb, Draco };
 //! What a format is and what it can hold.
 struct FormatInfo {
   Format format;
-  std::string_view name;                          //!< "VRML", "PLY", ...
-  std::span<const std::string_view> extensions;   //!< lowercase, with the dot; the first is canonical
-  bool faces = true;      //!< can hold triangles (all can hold points)
-  bool point_clouds = true; //!< can hold vertices without faces
+  std::string_view name;                        //!< "VRML", "PLY", ...
+  std::span<const std::string_view> extensions; //!< lowercase, with the dot; the first is canonical
+  bool faces = true;                            //!< can hold triangles (all can hold points)
+  bool point_clouds = true;                     //!< can hold vertices without faces
   bool normals = false;
   bool colors = false;
   bool texcoords = false;
-  bool lossy = false;     //!< positions are quantised (Draco)
+  bool lossy = false; //!< positions are quantised (Draco)
 };
 
 //! Every format, in a stable order.
@@ -56,11 +56,11 @@ struct LoadedMesh {
                                            const ReadOptions& options = {}, Notes* notes = nullptr);
 
 struct WriteOptions {
-  std::optional<Format> format;  //!< override the extension
-  bool ascii = false;            //!< PLY and STL: ASCII instead of binary
-  bool draco_in_gltf = false;    //!< GLB: compress with KHR_draco_mesh_compression
-  int draco_bits = 14;           //!< Draco and Draco-in-glTF: position quantisation bits (1..30)
-  int draco_level = 7;           //!< Draco compression level (0..10; 0 keeps vertex order)
+  std::optional<Format> format; //!< override the extension
+  bool ascii = false;           //!< PLY and STL: ASCII instead of binary
+  bool draco_in_gltf = false;   //!< GLB: compress with KHR_draco_mesh_compression
+  int draco_bits = 14;          //!< Draco and Draco-in-glTF: position quantisation bits (1..30)
+  int draco_level = 7;          //!< Draco compression level (0..10; 0 keeps vertex order)
 };
 
 //! Encodes a mesh in the format of `path` (or `options.format`). Attributes the format cannot hold are

@@ -69,10 +69,9 @@ struct Error {
 using Notes = std::vector<std::string>;
 
 //! A value or an `Error`.
-template <class T>
-class [[nodiscard]] Result {
+template <class T> class [[nodiscard]] Result {
 public:
-  Result(T value) : v_(std::move(value)) {}   // NOLINT(google-explicit-constructor): implicit by design
+  Result(T value) : v_(std::move(value)) {}     // NOLINT(google-explicit-constructor): implicit by design
   Result(Error error) : v_(std::move(error)) {} // NOLINT(google-explicit-constructor)
 
   [[nodiscard]] bool ok() const noexcept { return v_.index() == 0; }
@@ -96,8 +95,7 @@ private:
 };
 
 //! Success without a value, or an `Error`.
-template <>
-class [[nodiscard]] Result<void> {
+template <> class [[nodiscard]] Result<void> {
 public:
   Result() = default;
   Result(Error error) : error_(std::move(error)) {} // NOLINT(google-explicit-constructor)
