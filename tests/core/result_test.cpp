@@ -45,3 +45,23 @@ TEST(ErrorCode, EveryCodeHasItsOwnName) {
 
 } // namespace
 } // namespace pdeface
+
+namespace pdeface {
+namespace {
+
+TEST(Location, LineAndColumnOfAByteOffset) {
+  const std::string_view text = "ab\ncde\n\nf";
+  auto at = [&](std::uint64_t offset) {
+    const Location l = Location::in_text(text, offset);
+    return std::pair{l.line, l.column};
+  };
+  EXPECT_EQ(at(0), (std::pair<std::uint64_t, std::uint64_t>{1, 1}));
+  EXPECT_EQ(at(1), (std::pair<std::uint64_t, std::uint64_t>{1, 2}));
+  EXPECT_EQ(at(3), (std::pair<std::uint64_t, std::uint64_t>{2, 1}));
+  EXPECT_EQ(at(5), (std::pair<std::uint64_t, std::uint64_t>{2, 3}));
+  EXPECT_EQ(at(8), (std::pair<std::uint64_t, std::uint64_t>{4, 1}));
+  EXPECT_EQ(at(100), (std::pair<std::uint64_t, std::uint64_t>{4, 2})); // past the end: just after the last byte
+}
+
+} // namespace
+} // namespace pdeface

@@ -46,6 +46,8 @@ struct Location {
     return {line, column, std::nullopt};
   }
   [[nodiscard]] static Location at_byte(std::uint64_t offset) { return {0, 0, offset}; }
+  //! The line and column of byte `offset` of a text (for parsers that only know offsets).
+  [[nodiscard]] static Location in_text(std::string_view text, std::uint64_t offset);
   [[nodiscard]] bool known() const noexcept { return line != 0 || byte.has_value(); }
 };
 
