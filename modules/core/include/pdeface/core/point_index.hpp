@@ -1,0 +1,42 @@
+#pragma once
+//! \file
+//! Nearest-neighbour queries over a fixed set of points (a k-d tree, nanoflann inside).
+
+#include "pdeface/core/mesh.hpp"
+
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace pdeface {
+
+//! A k-d tree over points that outlive it (the index keeps a view, not a copy). Queries are const and
+//! safe from several threads at once.
+class PointIndex {
+public:
+  //! \pre `points` stays alive and unchanged while the index is used.
+  explicit PointIndex(std::span<const Vec3> points);
+  ~PointIndex();
+  PointIndex(PointIndex&&) noexcept;
+  PointIndex& operator=(PointIndex&&) noexcept;
+
+  struct Neighbour {
+    std::size_t index;
+    double distance; //!< Euclidean, not squared
+  };
+
+  //! The nearest point. \pre the index holds at least one point.
+  [[nodiscard]] Neighbour nearest(const Vec3& query) const;
+  //! The k nearest points, nearest first (fewer if the index holds fewer).
+  [[nodiscard]] std::vector<Neighbour> nearest(const Vec3& query, std::size_t k) const;
+  //! Every point within `radius`, nearest first.
+  [[nodiscard]] std::vector<Neighbour> within(const Vec3& query, double radius) const;
+
+  [[nodiscard]] std::size_t size() const noexcept;
+
+private:
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
+};
+
+} // namespace pdeface

@@ -1,0 +1,66 @@
+#include "pdeface/core/point_index.hpp"
+
+#include <nanoflann.hpp>
+
+#include <cmath>
+
+namespace pdeface {
+
+// nanoflann's dataset adaptor over a span of Eigen vectors.
+struct PointIndex::Tree {
+  struct Cloud {
+    std::span<const Vec3> points;
+    [[nodiscard]] std::size_t kdtree_get_point_count() const { return points.size(); }
+    [[nodiscard]] double kdtree_get_pt(std::size_t i, std::size_t dim) const {
+      return points[i][static_cast<Eigen::Index>(dim)];
+    }
+    template <class Box> bool kdtree_get_bbox(Box& /*unused*/) const { return false; }
+  };
+  using KdTree =
+      nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3, std::size_t>;
+
+  explicit Tree(std::span<const Vec3> points)
+      : cloud{points}, index(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {}
+
+  Cloud cloud;
+  KdTree index;
+};
+
+PointIndex::PointIndex(std::span<const Vec3> points) : tree_(std::make_unique<Tree>(points)) {}
+PointIndex::~PointIndex() = default;
+PointIndex::PointIndex(PointIndex&&) noexcept = default;
+PointIndex& PointIndex::operator=(PointIndex&&) noexcept = default;
+
+std::size_t PointIndex::size() const noexcept { return tree_->cloud.points.size(); }
+
+PointIndex::Neighbour PointIndex::nearest(const Vec3& query) const {
+  std::size_t index = 0;
+  double squared = 0.0;
+  tree_->index.knnSearch(query.data(), 1, &index, &squared);
+  return {index, std::sqrt(squared)};
+}
+
+std::vector<PointIndex::Neighbour> PointIndex::nearest(const Vec3& query, std::size_t k) const {
+  k = std::min(k, size());
+  std::vector<std::size_t> indices(k);
+  std::vector<double> squared(k);
+  k = tree_->index.knnSearch(query.data(), k, indices.data(), squared.data());
+  std::vector<Neighbour> out(k);
+  for (std::size_t i = 0; i < k; ++i)
+    out[i] = {indices[i], std::sqrt(squared[i])};
+  return out;
+}
+
+std::vector<PointIndex::Neighbour> PointIndex::within(const Vec3& query, double radius) const {
+  std::vector<std::pair<std::size_t, double>> matches;
+  nanoflann::SearchParams params;
+  params.sorted = true;
+  tree_->index.radiusSearch(query.data(), radius * radius, matches, params);
+  std::vector<Neighbour> out;
+  out.reserve(matches.size());
+  for (const auto& [index, squared] : matches)
+    out.push_back({index, std::sqrt(squared)});
+  return out;
+}
+
+} // namespace pdeface

@@ -1,0 +1,52 @@
+#include "pdeface/core/point_index.hpp"
+
+#include "pdeface/core/sample_face.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+namespace pdeface {
+namespace {
+
+// Brute force, the definition the index must agree with.
+std::vector<std::size_t> brute_within(const std::vector<Vec3>& points, const Vec3& q, double r) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if ((points[i] - q).norm() <= r) out.push_back(i);
+  return out;
+}
+
+TEST(PointIndex, AgreesWithBruteForce) {
+  const Mesh face = sample_face({.spacing_mm = 3.0});
+  const PointIndex index(face.positions);
+  ASSERT_EQ(index.size(), face.vertex_count());
+  for (const Vec3& q : {Vec3(0, 0, 30), Vec3(-31.3, 27.1, -5), Vec3(70, -90, -40), Vec3(500, 0, 0)}) {
+    const auto nearest = index.nearest(q);
+    double best = 1e300;
+    for (const Vec3& p : face.positions)
+      best = std::min(best, (p - q).norm());
+    EXPECT_DOUBLE_EQ(nearest.distance, best);
+
+    const auto five = index.nearest(q, 5);
+    ASSERT_EQ(five.size(), 5U);
+    EXPECT_TRUE(std::ranges::is_sorted(five, {}, &PointIndex::Neighbour::distance));
+    EXPECT_EQ(five.front().index, nearest.index);
+
+    auto found = index.within(q, 12.0);
+    std::vector<std::size_t> ids;
+    for (const auto& n : found)
+      ids.push_back(n.index);
+    std::ranges::sort(ids);
+    EXPECT_EQ(ids, brute_within(face.positions, q, 12.0));
+  }
+}
+
+TEST(PointIndex, AskingForMoreNeighboursThanPoints) {
+  const std::vector<Vec3> points{{0, 0, 0}, {1, 0, 0}};
+  const PointIndex index(points);
+  EXPECT_EQ(index.nearest(Vec3(0.9, 0, 0), 10).size(), 2U);
+}
+
+} // namespace
+} // namespace pdeface
