@@ -95,3 +95,25 @@ TEST(Topology, CountsPiecesLooseVerticesAndNonManifoldTriangles) {
 
 } // namespace
 } // namespace pdeface
+
+namespace pdeface {
+namespace {
+
+TEST(Components, LabelsAndDroppingSmallPieces) {
+  Mesh m;
+  // A strip of 4 triangles (6 vertices), a lone triangle, and a loose vertex.
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0},  {0, 1, 0},  {1, 1, 0},
+                 {2, 1, 0}, {9, 9, 9}, {10, 9, 9}, {9, 10, 9}, {5, 5, 5}};
+  m.triangles = {{0, 1, 4}, {0, 4, 3}, {1, 2, 5}, {1, 5, 4}, {6, 7, 8}};
+  m.colors.assign(m.positions.size(), Vec4f(1, 0, 0, 1));
+  EXPECT_EQ(component_labels(m), (std::vector<std::uint32_t>{0, 0, 0, 0, 0, 0, 1, 1, 1, 2}));
+  const Mesh big = drop_small_components(m, 0.5);
+  EXPECT_EQ(big.vertex_count(), 6U);
+  EXPECT_EQ(big.triangle_count(), 4U);
+  EXPECT_EQ(big.colors.size(), 6U);
+  EXPECT_TRUE(validate(big).ok());
+  EXPECT_EQ(drop_small_components(m, 0.2).vertex_count(), 9U); // the loose vertex goes, the triangle stays
+}
+
+} // namespace
+} // namespace pdeface

@@ -2,6 +2,10 @@
 
 #include "pdeface/core/openmesh.hpp"
 
+#include <algorithm>
+#include <climits>
+#include <cstdint>
+#include <numeric>
 #include <vector>
 
 namespace pdeface {
@@ -39,6 +43,59 @@ Topology topology(const Mesh& mesh) {
         }
     }
   }
+  return out;
+}
+
+std::vector<std::uint32_t> component_labels(const Mesh& mesh) {
+  // Union-find with path halving over the triangles' vertices.
+  std::vector<std::uint32_t> parent(mesh.vertex_count());
+  std::iota(parent.begin(), parent.end(), 0U);
+  auto find = [&](std::uint32_t v) {
+    while (parent[v] != v)
+      v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  for (const Triangle& t : mesh.triangles) {
+    const std::uint32_t a = find(t[0]);
+    for (int i = 1; i < 3; ++i) {
+      const std::uint32_t b = find(t[static_cast<std::size_t>(i)]);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  std::vector<std::uint32_t> label(mesh.vertex_count());
+  std::vector<std::uint32_t> renumber(mesh.vertex_count(), UINT32_MAX);
+  std::uint32_t next = 0;
+  for (std::uint32_t v = 0; v < label.size(); ++v) {
+    const std::uint32_t root = find(v);
+    if (renumber[root] == UINT32_MAX) renumber[root] = next++;
+    label[v] = renumber[root];
+  }
+  return label;
+}
+
+Mesh drop_small_components(const Mesh& mesh, double min_fraction) {
+  if (mesh.is_point_cloud()) return mesh;
+  const std::vector<std::uint32_t> label = component_labels(mesh);
+  std::vector<std::size_t> size;
+  for (std::uint32_t l : label) {
+    if (l >= size.size()) size.resize(l + 1, 0);
+    ++size[l];
+  }
+  const auto min_size = static_cast<std::size_t>(min_fraction * static_cast<double>(mesh.vertex_count()));
+  std::vector<std::uint32_t> index(mesh.vertex_count(), UINT32_MAX);
+  Mesh out;
+  out.units = mesh.units;
+  out.name = mesh.name;
+  for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
+    if (size[label[v]] < min_size) continue;
+    index[v] = static_cast<std::uint32_t>(out.positions.size());
+    out.positions.push_back(mesh.positions[v]);
+    if (mesh.has_normals()) out.normals.push_back(mesh.normals[v]);
+    if (mesh.has_colors()) out.colors.push_back(mesh.colors[v]);
+    if (mesh.has_texcoords()) out.texcoords.push_back(mesh.texcoords[v]);
+  }
+  for (const Triangle& t : mesh.triangles)
+    if (index[t[0]] != UINT32_MAX) out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
   return out;
 }
 

@@ -5,6 +5,8 @@
 #include "pdeface/core/mesh.hpp"
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 namespace pdeface {
 
@@ -16,5 +18,13 @@ struct Topology {
 };
 
 [[nodiscard]] Topology topology(const Mesh& mesh);
+
+//! A label per vertex: vertices joined by triangles share a label, labels are 0..n-1 in order of first
+//! appearance, and a vertex on no triangle has a label of its own. Works on non-manifold meshes.
+[[nodiscard]] std::vector<std::uint32_t> component_labels(const Mesh& mesh);
+
+//! The mesh without the pieces that hold fewer than `min_fraction` of its vertices (loose fragments,
+//! stray points); vertices re-indexed, attributes kept. A point cloud is returned unchanged.
+[[nodiscard]] Mesh drop_small_components(const Mesh& mesh, double min_fraction);
 
 } // namespace pdeface
