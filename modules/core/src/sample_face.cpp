@@ -44,8 +44,14 @@ struct Hole {
 };
 constexpr Hole kHoles[] = {{-47.0, 47.0, 3.0}, {21.0, -72.0, 2.4}, {54.0, -12.0, 3.6}, {-9.0, 71.0, 2.0}};
 
+// 1 across the mouth (|x| < 14 mm), falling off over 4 mm towards its corners at ±23 mm.
+double mouth_span(double x) {
+  const double beyond = std::max(0.0, std::abs(x) - 14.0) / 4.0;
+  return std::exp(-0.5 * beyond * beyond);
+}
+
 Vec4f skin_colour(double x, double y) {
-  const double lips = std::max(bump(x, y, 0.0, -24.5, 15.0, 3.5), bump(x, y, 0.0, -36.5, 14.0, 4.0));
+  const double lips = mouth_span(x) * std::max(bump(0.0, y, 0.0, -24.5, 1.0, 3.5), bump(0.0, y, 0.0, -36.5, 1.0, 4.0));
   const double brows = bump(x, y, -30.0, 39.0, 15.0, 3.0) + bump(x, y, 30.0, 39.0, 15.0, 3.0);
   const double r = 0.85 - 0.45 * brows + 0.02 * lips;
   const double g = 0.68 - 0.35 * brows - 0.25 * lips;
@@ -77,11 +83,21 @@ double sample_face_height(double x, double y) {
   z += 5.0 * (bump(x, y, -14.0, -5.0, 5.0, 5.0) + bump(x, y, 14.0, -5.0, 5.0, 5.0)); // nose wings
 
   z += 3.5 * (bump(x, y, -32.0, 26.0, 7.0, 5.0) + bump(x, y, 32.0, 26.0, 7.0, 5.0)); // eyeballs
-  z += 5.0 * bump(x, y, 0.0, -24.5, 15.0, 4.0);                                      // upper lip
-  z += 4.5 * bump(x, y, 0.0, -36.5, 14.0, 4.5);                                      // lower lip
-  z -= 2.5 * bump(x, y, 0.0, -30.5, 17.0, 1.4);                                      // mouth line
+  // Lips and the mouth line between them span the mouth's width (46 mm) and fade out at its corners.
+  const double across = mouth_span(x);
+  z += across * 5.0 * bump(0.0, y, 0.0, -24.5, 1.0, 4.0); // upper lip
+  z += across * 4.5 * bump(0.0, y, 0.0, -36.5, 1.0, 4.5); // lower lip
+  z -= across * 2.5 * bump(0.0, y, 0.0, -30.5, 1.0, 1.4); // mouth line
   z += 6.0 * bump(x, y, 0.0, -64.0, 15.0, 8.0);                                      // chin
   return z;
+}
+
+SampleFaceLandmarks sample_face_landmarks() {
+  SampleFaceLandmarks l;
+  for (Vec3* p : {&l.nose_tip, &l.eye_inner_left, &l.eye_inner_right, &l.eye_outer_left, &l.eye_outer_right,
+                  &l.mouth_left, &l.mouth_right})
+    p->z() = sample_face_height(p->x(), p->y());
+  return l;
 }
 
 Mesh sample_face(const SampleFaceOptions& options) {

@@ -5,6 +5,7 @@
 #include "pdeface/core/result.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/Geometry> // cross products on Vec3 everywhere
 
 #include <array>
 #include <cstdint>

@@ -22,6 +22,16 @@ struct SampleFaceOptions {
   std::uint32_t seed = 1;   //!< changes the outline and noise, never the shape
 };
 
+//! Where the sample's landmarks are, in mm (the same frame as the height field; z on the surface).
+struct SampleFaceLandmarks {
+  Vec3 nose_tip{0.0, 0.0, 0.0};
+  Vec3 eye_inner_left{17.0, 29.0, 0.0}, eye_inner_right{-17.0, 29.0, 0.0};
+  Vec3 eye_outer_left{46.0, 30.0, 0.0}, eye_outer_right{-46.0, 30.0, 0.0};
+  Vec3 mouth_left{23.0, -30.5, 0.0}, mouth_right{-23.0, -30.5, 0.0};
+};
+//! The landmarks of the sample face, z filled in from the height field.
+[[nodiscard]] SampleFaceLandmarks sample_face_landmarks();
+
 //! The noiseless height field, in mm: z of the face at (x, y).
 [[nodiscard]] double sample_face_height(double x, double y);
 

@@ -1,0 +1,47 @@
+#pragma once
+//! \file
+//! Automatic landmark detection on meshes and point clouds in any pose.
+//!
+//! Order (see docs/align.md): units from the size; loose fragments dropped; the symmetry plane found by
+//! mirroring the scan across candidate planes in every direction and refining the best by registration;
+//! the nose tip and the face's forward and up directions from the symmetry profile; eye and mouth
+//! corners as hollows of a depth map in the regions the nose tip predicts; the face's top and bottom
+//! from the symmetry profile; the frame by a least-squares fit of the landmarks (`Eigen::umeyama`).
+
+#include "pdeface/align/frame.hpp"
+#include "pdeface/align/landmarks.hpp"
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/core/result.hpp"
+
+namespace pdeface::align {
+
+struct DetectOptions {
+  double sample_mm = 3.0;        //!< spacing of the subsample the symmetry search works on
+  int directions = 400;          //!< candidate symmetry-plane normals tried (spread over a hemisphere)
+  double min_confidence = 0.35;  //!< below this, detection fails with `NoFace`
+  double min_fragment = 0.02;    //!< mesh pieces with fewer vertices than this fraction are ignored
+};
+
+//! A plane n · p = offset, in the scan's frame and units.
+struct Plane {
+  Vec3 normal = Vec3::UnitX();
+  double offset = 0.0;
+};
+
+//! What detection found, and how sure it is.
+struct Detection {
+  Landmarks landmarks; //!< in the scan's frame and units
+  FaceFrame frame;     //!< scan -> canonical (from the landmarks)
+  Plane symmetry;      //!< the symmetry plane, in the scan's frame and units
+  double confidence = 0.0; //!< 0..1, the weakest of the cues below
+  double symmetry_rms_mm = 0.0;   //!< how far the mirrored scan lies from itself (trimmed RMS)
+  double nose_prominence_mm = 0.0; //!< how sharply the nose tip stands out of the symmetry profile
+  double fit_rms_mm = 0.0;        //!< residual of the landmarks against the average face after the fit
+};
+
+//! Finds the landmarks of the face in `scan`. Errors: `Empty` (too few points), `NoFace` (no nose-like
+//! feature on any symmetry plane, or confidence below `options.min_confidence`; the message says which
+//! cue failed).
+[[nodiscard]] Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options = {});
+
+} // namespace pdeface::align

@@ -1,0 +1,101 @@
+#include "depth_map.hpp"
+
+#include <algorithm>
+
+namespace pdeface::align::detail {
+
+DepthMap::DepthMap(double x0, double x1, double y0, double y1, double cell)
+    : x0_(x0), y0_(y0), cell_(cell),
+      z_(Eigen::MatrixXd::Constant(static_cast<Eigen::Index>(std::ceil((y1 - y0) / cell)) + 1,
+                                   static_cast<Eigen::Index>(std::ceil((x1 - x0) / cell)) + 1,
+                                   std::numeric_limits<double>::quiet_NaN())) {}
+
+void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> triangles, double splat) {
+  auto keep = [&](int r, int c, double z) {
+    if (r < 0 || c < 0 || r >= rows() || c >= cols()) return;
+    double& cur = z_(r, c);
+    if (std::isnan(cur) || z > cur) cur = z;
+  };
+  if (triangles.empty()) {
+    const int reach = static_cast<int>(std::ceil(splat / cell_));
+    for (const Vec3& q : p) {
+      const int c0 = static_cast<int>(std::lround((q.x() - x0_) / cell_));
+      const int r0 = static_cast<int>(std::lround((q.y() - y0_) / cell_));
+      for (int dr = -reach; dr <= reach; ++dr)
+        for (int dc = -reach; dc <= reach; ++dc)
+          if ((dr * dr + dc * dc) * cell_ * cell_ <= splat * splat) keep(r0 + dr, c0 + dc, q.z());
+    }
+    return;
+  }
+  for (const Triangle& t : triangles) {
+    const Vec3& a = p[t[0]];
+    const Vec3& b = p[t[1]];
+    const Vec3& c = p[t[2]];
+    const double area = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+    if (std::abs(area) < 1e-12) continue; // seen edge-on
+    const int cmin = std::max(0, static_cast<int>(std::ceil((std::min({a.x(), b.x(), c.x()}) - x0_) / cell_)));
+    const int cmax = std::min(cols() - 1, static_cast<int>(std::floor((std::max({a.x(), b.x(), c.x()}) - x0_) / cell_)));
+    const int rmin = std::max(0, static_cast<int>(std::ceil((std::min({a.y(), b.y(), c.y()}) - y0_) / cell_)));
+    const int rmax = std::min(rows() - 1, static_cast<int>(std::floor((std::max({a.y(), b.y(), c.y()}) - y0_) / cell_)));
+    for (int r = rmin; r <= rmax; ++r) {
+      const double y = y_of(r);
+      for (int col = cmin; col <= cmax; ++col) {
+        const double x = x_of(col);
+        // Barycentric coordinates of (x, y) in the projected triangle.
+        const double wa = ((b.x() - x) * (c.y() - y) - (c.x() - x) * (b.y() - y)) / area;
+        const double wb = ((c.x() - x) * (a.y() - y) - (a.x() - x) * (c.y() - y)) / area;
+        const double wc = 1.0 - wa - wb;
+        if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+        keep(r, col, wa * a.z() + wb * b.z() + wc * c.z());
+      }
+    }
+  }
+}
+
+void DepthMap::fill_holes(int max_gap) {
+  for (int pass = 0; pass < max_gap; ++pass) {
+    Eigen::MatrixXd next = z_;
+    for (int r = 0; r < rows(); ++r)
+      for (int c = 0; c < cols(); ++c) {
+        if (known(r, c)) continue;
+        double sum = 0.0;
+        int n = 0;
+        for (auto [dr, dc] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
+          const int rr = r + dr, cc = c + dc;
+          if (rr < 0 || cc < 0 || rr >= rows() || cc >= cols() || !known(rr, cc)) continue;
+          sum += z_(rr, cc);
+          ++n;
+        }
+        if (n >= 2) next(r, c) = sum / n; // only inside gaps, never growing the outline
+      }
+    z_ = std::move(next);
+  }
+}
+
+std::optional<double> DepthMap::at(double x, double y) const {
+  const int c = static_cast<int>(std::lround((x - x0_) / cell_));
+  const int r = static_cast<int>(std::lround((y - y0_) / cell_));
+  if (r < 0 || c < 0 || r >= rows() || c >= cols() || !known(r, c)) return std::nullopt;
+  return z_(r, c);
+}
+
+std::optional<double> DepthMap::relief(double x, double y, double radius) const {
+  const std::optional<double> centre = at(x, y);
+  if (!centre) return std::nullopt;
+  const int reach = static_cast<int>(std::ceil(radius / cell_));
+  double sum = 0.0;
+  int n = 0, total = 0;
+  for (int dr = -reach; dr <= reach; ++dr)
+    for (int dc = -reach; dc <= reach; ++dc) {
+      if ((dr * dr + dc * dc) * cell_ * cell_ > radius * radius) continue;
+      ++total;
+      if (const auto z = at(x + dc * cell_, y + dr * cell_)) {
+        sum += *z;
+        ++n;
+      }
+    }
+  if (n < total / 2) return std::nullopt; // too close to the edge of the scan to judge
+  return *centre - sum / n;
+}
+
+} // namespace pdeface::align::detail

@@ -1,0 +1,43 @@
+#pragma once
+// A front-most depth map z(x, y) of a face in (or near) the canonical frame: the view a range scanner
+// has. Internal to align: landmark search in a regular grid is simple and robust.
+
+#include "pdeface/core/mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <span>
+
+namespace pdeface::align::detail {
+
+class DepthMap {
+public:
+  //! Grid over [x0, x1] x [y0, y1] with step `cell` (mm).
+  DepthMap(double x0, double x1, double y0, double y1, double cell);
+
+  //! Front-most z of the triangles (z-buffer), or of splatted points (radius `splat` mm) for a cloud.
+  void rasterise(std::span<const Vec3> positions, std::span<const Triangle> triangles, double splat);
+  //! Fills holes up to `max_gap` cells wide by averaging known neighbours, a few passes.
+  void fill_holes(int max_gap);
+
+  [[nodiscard]] std::optional<double> at(double x, double y) const;
+  //! Depth minus the mean depth over a disc of radius r (mm): negative in hollows, positive on bumps.
+  [[nodiscard]] std::optional<double> relief(double x, double y, double r) const;
+
+  [[nodiscard]] double cell() const { return cell_; }
+  [[nodiscard]] int cols() const { return static_cast<int>(z_.cols()); }
+  [[nodiscard]] int rows() const { return static_cast<int>(z_.rows()); }
+  [[nodiscard]] double x_of(int col) const { return x0_ + col * cell_; }
+  [[nodiscard]] double y_of(int row) const { return y0_ + row * cell_; }
+  [[nodiscard]] bool known(int row, int col) const { return !std::isnan(z_(row, col)); }
+  [[nodiscard]] double z(int row, int col) const { return z_(row, col); }
+
+private:
+  double x0_, y0_, cell_;
+  Eigen::MatrixXd z_; // rows: y, cols: x; NaN where nothing was seen
+};
+
+} // namespace pdeface::align::detail

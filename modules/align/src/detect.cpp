@@ -1,0 +1,410 @@
+#include "pdeface/align/detect.hpp"
+
+#include "depth_map.hpp"
+#include "pdeface/core/point_index.hpp"
+#include "pdeface/core/topology.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <unordered_map>
+
+namespace pdeface::align {
+namespace {
+
+constexpr double kMinNoseProminence = 8.0; // mm: a nose tip stands 15-30 mm out of its profile
+
+// ---- sampling ------------------------------------------------------------------------------------------
+
+// One point per occupied voxel: an even subsample whatever the scan's density.
+std::vector<Vec3> voxel_subsample(std::span<const Vec3> points, double cell) {
+  std::unordered_map<std::uint64_t, std::size_t> seen;
+  std::vector<Vec3> out;
+  for (const Vec3& p : points) {
+    const Eigen::Vector3d k = (p / cell).array().floor();
+    const auto key = (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.x()) & 0x1FFFFF) << 42U) |
+                     (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.y()) & 0x1FFFFF) << 21U) |
+                     (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.z()) & 0x1FFFFF));
+    if (seen.emplace(key, out.size()).second) out.push_back(p);
+  }
+  return out;
+}
+
+// Every `step`-th point, at most `count` of them.
+std::vector<Vec3> thin(std::span<const Vec3> points, std::size_t count) {
+  const std::size_t step = std::max<std::size_t>(1, points.size() / std::max<std::size_t>(count, 1));
+  std::vector<Vec3> out;
+  for (std::size_t i = 0; i < points.size(); i += step) out.push_back(points[i]);
+  return out;
+}
+
+double median_spacing(std::span<const Vec3> points, const PointIndex& index) {
+  std::vector<double> d;
+  for (const Vec3& p : thin(points, 400)) d.push_back(index.nearest(p, 2).back().distance);
+  std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2));
+  return d[d.size() / 2];
+}
+
+// ---- symmetry ------------------------------------------------------------------------------------------
+
+// The mirror map x -> a x + b (a is orthogonal with det -1).
+struct Mirror {
+  Eigen::Matrix3d a;
+  Vec3 b;
+  [[nodiscard]] Vec3 operator()(const Vec3& p) const { return a * p + b; }
+};
+
+Mirror mirror_of(const Plane& plane) {
+  return {Eigen::Matrix3d::Identity() - 2.0 * plane.normal * plane.normal.transpose(), 2.0 * plane.offset * plane.normal};
+}
+
+// The symmetry plane of an improper isometry: the normal is the eigenvector of its symmetric part with
+// eigenvalue nearest -1; the plane passes through the midpoints of the points and their images.
+Plane plane_of(const Mirror& m, std::span<const Vec3> points) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (m.a + m.a.transpose()));
+  const Vec3 n = eig.eigenvectors().col(0).normalized();
+  double offset = 0.0;
+  for (const Vec3& p : points) offset += n.dot(0.5 * (p + m(p)));
+  return {n, offset / static_cast<double>(points.size())};
+}
+
+// Trimmed RMS distance from the mirrored points to the scan: the best `keep` fraction counts, so that
+// an asymmetric cut, hair or a missing ear do not hide a good plane.
+double mirror_rms(const Mirror& m, std::span<const Vec3> points, const PointIndex& index, double keep = 0.7) {
+  std::vector<double> d;
+  d.reserve(points.size());
+  for (const Vec3& p : points) d.push_back(index.nearest(m(p)).distance);
+  const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(keep * static_cast<double>(d.size())));
+  std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(n - 1));
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i) sum += d[i] * d[i];
+  return std::sqrt(sum / static_cast<double>(n));
+}
+
+// Registration of the mirrored scan onto the scan (trimmed ICP, rigid fits by Eigen::umeyama).
+Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all, const PointIndex& index) {
+  const auto n = points.size();
+  Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(n)), dst(3, static_cast<Eigen::Index>(n));
+  std::vector<std::pair<double, std::size_t>> order(n);
+  for (int iteration = 0; iteration < 40; ++iteration) {
+    std::vector<Vec3> moved(n), target(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      moved[i] = m(points[i]);
+      const auto nn = index.nearest(moved[i]);
+      target[i] = all[nn.index];
+      order[i] = {nn.distance, i};
+    }
+    const std::size_t kept = std::max<std::size_t>(3, 7 * n / 10);
+    std::ranges::nth_element(order, order.begin() + static_cast<std::ptrdiff_t>(kept - 1));
+    for (std::size_t j = 0; j < kept; ++j) {
+      src.col(static_cast<Eigen::Index>(j)) = moved[order[j].second];
+      dst.col(static_cast<Eigen::Index>(j)) = target[order[j].second];
+    }
+    const auto k = static_cast<Eigen::Index>(kept);
+    const Eigen::Matrix4d t = Eigen::umeyama(src.leftCols(k), dst.leftCols(k), false);
+    const Eigen::Matrix3d r = t.topLeftCorner<3, 3>();
+    m = {r * m.a, r * m.b + t.topRightCorner<3, 1>()};
+    if (Eigen::AngleAxisd(r).angle() < 1e-5 && t.topRightCorner<3, 1>().norm() < 1e-4) break;
+  }
+  return m;
+}
+
+// Unit vectors spread evenly over the hemisphere z >= 0 (a Fibonacci spiral).
+std::vector<Vec3> hemisphere(int count) {
+  std::vector<Vec3> out;
+  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double z = 1.0 - (i + 0.5) / count;
+    const double r = std::sqrt(1.0 - z * z);
+    out.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
+  }
+  return out;
+}
+
+// ---- the nose on the symmetry profile ------------------------------------------------------------------
+
+struct Nose {
+  Vec3 tip;
+  Vec3 forward; // out of the face
+  Vec3 up;      // towards the forehead
+  double prominence = 0.0;
+};
+
+// The symmetry profile is the scan near the plane. Looking along every direction in the plane, the
+// extreme point is a nose tip when the profile falls away steeply on both sides of it (15 mm on, the
+// dorsum is a few mm back and the upper lip 15-20 mm back), yet smoothly (a spike of hair falls away as
+// fast 5 mm on). The dorsum side is up.
+std::optional<Nose> find_nose(const Plane& plane, std::span<const Vec3> points, double slab) {
+  std::vector<Vec3> profile;
+  for (const Vec3& p : points)
+    if (std::abs(plane.normal.dot(p) - plane.offset) <= slab) profile.push_back(p);
+  if (profile.size() < 20) return std::nullopt;
+  const Vec3 b1 = plane.normal.unitOrthogonal();
+  const Vec3 b2 = plane.normal.cross(b1);
+
+  std::optional<Nose> best;
+  for (int step = 0; step < 180; ++step) {
+    const double theta = 2.0 * std::numbers::pi * step / 180.0;
+    const Vec3 d = std::cos(theta) * b1 + std::sin(theta) * b2;
+    const Vec3 lateral = plane.normal.cross(d);
+    const Vec3& tip = *std::ranges::max_element(profile, {}, [&](const Vec3& p) { return d.dot(p); });
+    // How far the profile falls back from the tip at lateral offsets in [lo, hi] on one side: the
+    // least depth among those points within 30 mm behind the tip. +inf when there are none (an end of
+    // the profile, or a curve turning away).
+    auto nearest_depth = [&](double lo, double hi, double side) {
+      double drop = std::numeric_limits<double>::infinity();
+      for (const Vec3& q : profile) {
+        const double l = side * lateral.dot(q - tip);
+        const double behind = d.dot(tip - q);
+        if (l >= lo && l <= hi && behind <= 30.0) drop = std::min(drop, behind);
+      }
+      return drop;
+    };
+    const double far_plus = nearest_depth(12.0, 18.0, 1.0), far_minus = nearest_depth(12.0, 18.0, -1.0);
+    const double near_plus = nearest_depth(3.0, 7.0, 1.0), near_minus = nearest_depth(3.0, 7.0, -1.0);
+    if (!std::isfinite(far_plus + far_minus + near_plus + near_minus)) continue; // an end of the profile
+    if (near_plus + near_minus > 0.6 * (far_plus + far_minus) + 1.0) continue;   // a spike, not a nose
+    const double prominence = far_plus + far_minus;
+    if (!best || prominence > best->prominence)
+      best = Nose{tip, d, far_plus < far_minus ? lateral : Vec3(-lateral), prominence};
+  }
+  return best;
+}
+
+// ---- landmarks in the depth map -------------------------------------------------------------------------
+
+// The most hollow point of a window (relief over a disc of radius r), as (x, y) in the frame.
+std::optional<Eigen::Vector2d> hollow(const detail::DepthMap& map, double x0, double x1, double y0, double y1,
+                                      double r) {
+  std::optional<Eigen::Vector2d> best;
+  double lowest = std::numeric_limits<double>::infinity();
+  const double step = map.cell();
+  for (double y = y0; y <= y1; y += step)
+    for (double x = std::min(x0, x1); x <= std::max(x0, x1); x += step)
+      if (const auto rel = map.relief(x, y, r); rel && *rel < lowest) {
+        lowest = *rel;
+        best = Eigen::Vector2d(x, y);
+      }
+  return best;
+}
+
+// The lateral end of a horizontal hollow (the mouth line, the fissure of an eye): walking from x_from
+// towards x_to, the columns whose most hollow point (over [y0, y1]) is at least `fraction` as deep as
+// the deepest column's; the end is the last of them reached without a gap.
+std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_from, double x_to, double y0,
+                                          double y1, double r, double fraction = 0.35) {
+  const double step = x_to > x_from ? map.cell() : -map.cell();
+  std::vector<std::pair<double, Eigen::Vector2d>> columns; // (most hollow relief, where)
+  for (double x = x_from; (x_to - x) * step >= 0.0; x += step) {
+    std::pair<double, Eigen::Vector2d> best{std::numeric_limits<double>::infinity(), {x, 0.0}};
+    for (double y = y0; y <= y1; y += map.cell())
+      if (const auto rel = map.relief(x, y, r); rel && *rel < best.first) best = {*rel, Eigen::Vector2d(x, y)};
+    columns.push_back(best);
+  }
+  const auto deepest = std::ranges::min_element(columns, {}, &std::pair<double, Eigen::Vector2d>::first);
+  if (deepest == columns.end() || !(deepest->first < 0.0)) return std::nullopt;
+  auto end = deepest;
+  for (auto it = deepest; it != columns.end() && it->first <= fraction * deepest->first; ++it) end = it;
+  return end->second;
+}
+
+// A rigid map into a face frame (mm): q = rotation · p + translation.
+struct Rigid {
+  Eigen::Matrix3d rotation;
+  Vec3 translation;
+};
+
+// Landmarks (in mm, the scan's frame) found in a depth map of the scan seen in `frame`, whose origin is
+// near the nose tip and whose axes are near the canonical ones: the nose tip as the front-most point
+// near the origin, eye and mouth corners as the hollows of the windows where faces have them, the face's
+// bottom where the midline turns under the chin, its top by the rule of thirds (within the scan).
+Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangle> triangles, double spacing,
+                           const Rigid& frame) {
+  std::vector<Vec3> local(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) local[i] = frame.rotation * points[i] + frame.translation;
+  detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
+  map.rasterise(local, triangles, std::max(1.0, 0.75 * spacing));
+  map.fill_holes(4);
+
+  std::optional<Eigen::Vector3d> tip; // (x, y, z) in the frame
+  for (double y = -15.0; y <= 15.0; y += 1.0)
+    for (double x = -10.0; x <= 10.0; x += 1.0)
+      if (const auto z = map.at(x, y); z && (!tip || *z > tip->z())) tip = Eigen::Vector3d(x, y, *z);
+
+  Landmarks found;
+  auto place = [&](Landmark l, double x, double y) {
+    if (const auto z = map.at(x, y)) found[l] = Vec3(frame.rotation.transpose() * (Vec3(x, y, *z) - frame.translation));
+  };
+  if (!tip) return found;
+  place(Landmark::NoseTip, tip->x(), tip->y());
+  const double x0 = tip->x(), y0 = tip->y();
+  std::vector<double> eye_y, mouth_y;
+  for (double side : {1.0, -1.0}) {
+    const bool left = side > 0;
+    if (const auto inner = hollow(map, x0 + side * 6.0, x0 + side * 28.0, y0 + 18.0, y0 + 50.0, 5.0)) {
+      place(left ? Landmark::EyeInnerLeft : Landmark::EyeInnerRight, inner->x(), inner->y());
+      eye_y.push_back(inner->y());
+      if (const auto outer = hollow_end(map, inner->x(), x0 + side * 65.0, inner->y() - 10.0, inner->y() + 10.0, 5.0))
+        place(left ? Landmark::EyeOuterLeft : Landmark::EyeOuterRight, outer->x(), outer->y());
+    }
+    if (const auto mouth = hollow_end(map, x0, x0 + side * 40.0, y0 - 55.0, y0 - 18.0, 5.0)) {
+      place(left ? Landmark::MouthLeft : Landmark::MouthRight, mouth->x(), mouth->y());
+      mouth_y.push_back(mouth->y());
+    }
+  }
+  auto mean = [](const std::vector<double>& v, double fallback) {
+    return v.empty() ? fallback : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+  };
+  const double y_eyes = mean(eye_y, y0 + 38.0);
+  const double y_mouth = mean(mouth_y, y0 - 35.0);
+
+  // The chin's most forward point on the midline below the mouth, then down while the profile stays
+  // within 15 mm of it (below that, it turns under the chin towards the neck).
+  std::optional<Eigen::Vector2d> chin; // (y, z)
+  for (double y = y_mouth - 12.0; y >= y_mouth - 55.0; y -= 1.0)
+    if (const auto z = map.at(x0, y); z && (!chin || *z > chin->y())) chin = Eigen::Vector2d(y, *z);
+  if (!chin) return found;
+  double y_bottom = chin->x();
+  while (y_bottom > -140.0) {
+    const auto z = map.at(x0, y_bottom - 1.0);
+    if (!z || *z < chin->y() - 15.0) break;
+    y_bottom -= 1.0;
+  }
+  place(Landmark::FaceBottom, x0, y_bottom);
+  // Rule of thirds: hairline to nasion ~ half of nasion to chin; the nasion is a few mm above the eyes.
+  const double y_nasion = y_eyes + 4.0;
+  const double y_top = y_nasion + 0.5 * (y_nasion - y_bottom);
+  double y_scan = y_nasion;
+  while (y_scan < y_top && map.at(x0, y_scan + 1.0)) y_scan += 1.0;
+  place(Landmark::FaceTop, x0, y_scan);
+  return found;
+}
+
+double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+
+} // namespace
+
+Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
+  const std::string source = scan.name;
+  if (scan.vertex_count() < 100)
+    return make_error(ErrorCode::Empty, fmt::format("{} points are too few to find a face in", scan.vertex_count()), source);
+  const Units units = detect_units(scan);
+  const double mm = millimetres_per(units);
+
+  // Work in millimetres, without loose fragments.
+  Mesh work = drop_small_components(scan, options.min_fragment);
+  for (Vec3& p : work.positions) p *= mm;
+  const std::vector<Vec3>& points = work.positions;
+  const PointIndex index(points);
+  const double spacing = median_spacing(points, index);
+  const std::vector<Vec3> sample = voxel_subsample(points, std::max(options.sample_mm, spacing));
+  const std::vector<Vec3> probe = thin(sample, 400);
+  const std::vector<Vec3> fit_points = thin(sample, 1500);
+
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& p : sample) centroid += p;
+  centroid /= static_cast<double>(sample.size());
+
+  // Symmetry plane candidates through the centroid in every direction; the best few refined by ICP.
+  std::vector<std::pair<double, Vec3>> scored;
+  for (const Vec3& n : hemisphere(options.directions))
+    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), probe, index), n);
+  std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
+  std::vector<Vec3> seeds;
+  for (const auto& [rms, n] : scored) {
+    if (seeds.size() == 6) break;
+    if (std::ranges::none_of(seeds, [&](const Vec3& s) { return std::abs(s.dot(n)) > std::cos(0.26); }))
+      seeds.push_back(n);
+  }
+
+  struct Candidate {
+    Plane plane;
+    double rms;
+    Nose nose;
+  };
+  std::optional<Candidate> chosen;
+  double best_prominence = 0.0;
+  const double slab = std::max(1.0, 0.6 * spacing);
+  for (const Vec3& n : seeds) {
+    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), fit_points, points, index);
+    const Plane plane = plane_of(m, fit_points);
+    const double rms = mirror_rms(mirror_of(plane), fit_points, index);
+    const std::optional<Nose> nose = find_nose(plane, points, slab);
+    if (!nose) continue;
+    best_prominence = std::max(best_prominence, nose->prominence);
+    if (nose->prominence < kMinNoseProminence) continue;
+    // A good symmetry plane with a nose on it; among several, prefer symmetry, then the clearer nose.
+    const double merit = nose->prominence / (1.0 + rms);
+    if (!chosen || merit > chosen->nose.prominence / (1.0 + chosen->rms)) chosen = Candidate{plane, rms, *nose};
+  }
+  if (!chosen)
+    return make_error(ErrorCode::NoFace,
+                      fmt::format("no face found: no nose-like point on any symmetry plane (most prominent {:.1f} mm, "
+                                  "a nose stands at least {:.0f} mm out of its profile)",
+                                  best_prominence, kMinNoseProminence),
+                      source);
+
+  if (std::getenv("PDEFACE_DEBUG")) {
+    const Nose& dn = chosen->nose;
+    std::fprintf(stderr, "plane n=(%.3f %.3f %.3f) d=%.2f rms=%.2f tip=(%.1f %.1f %.1f) fwd=(%.2f %.2f %.2f) up=(%.2f %.2f %.2f) prom=%.1f spacing=%.2f\n",
+                 chosen->plane.normal.x(), chosen->plane.normal.y(), chosen->plane.normal.z(), chosen->plane.offset, chosen->rms,
+                 dn.tip.x(), dn.tip.y(), dn.tip.z(), dn.forward.x(), dn.forward.y(), dn.forward.z(), dn.up.x(), dn.up.y(), dn.up.z(), dn.prominence, spacing);
+  }
+  // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
+  const Nose& nose = chosen->nose;
+  Eigen::Matrix3d r;
+  r.row(1) = nose.up.transpose();
+  r.row(2) = nose.forward.transpose();
+  r.row(0) = nose.up.cross(nose.forward).transpose();
+  Rigid frame_mm{r, -r * nose.tip};
+  // Search the landmarks in that frame, fit the frame to them, and search again in the better frame.
+  Landmarks found;
+  for (int round = 0; round < 2; ++round) {
+    found = search_landmarks(points, work.triangles, spacing, frame_mm);
+    Result<FaceFrame> fit = frame_from_landmarks(found, Units::Millimetres);
+    if (!fit) break;
+    frame_mm = {fit->rotation, fit->translation};
+  }
+  for (auto& p : found.points)
+    if (p) *p /= mm;
+  found.units = units;
+
+  Result<FaceFrame> frame = frame_from_landmarks(found, units);
+  if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, source);
+
+  Detection out;
+  out.landmarks = found;
+  out.frame = *frame;
+  out.symmetry = {chosen->plane.normal, chosen->plane.offset / mm};
+  out.symmetry_rms_mm = chosen->rms;
+  out.nose_prominence_mm = nose.prominence;
+  double sum = 0.0;
+  int n = 0;
+  const Landmarks canonical = to_canonical(found, *frame);
+  for (std::size_t i = 0; i < kLandmarkCount; ++i)
+    if (canonical.points[i]) {
+      sum += (*canonical.points[i] - *canonical_template().points[i]).squaredNorm();
+      ++n;
+    }
+  out.fit_rms_mm = std::sqrt(sum / n);
+  const double coverage = static_cast<double>(found.count()) / kLandmarkCount;
+  out.confidence = std::min({clamp01(1.0 - (out.symmetry_rms_mm - 2.0) / 6.0), clamp01((nose.prominence - kMinNoseProminence) / 12.0),
+                             clamp01(1.0 - (out.fit_rms_mm - 6.0) / 12.0), coverage});
+  if (out.confidence < options.min_confidence)
+    return make_error(ErrorCode::NoFace,
+                      fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
+                                  "landmark fit {:.1f} mm, {} of {} landmarks)",
+                                  out.confidence, options.min_confidence, out.symmetry_rms_mm, nose.prominence,
+                                  out.fit_rms_mm, found.count(), kLandmarkCount),
+                      source);
+  return out;
+}
+
+} // namespace pdeface::align
