@@ -2,23 +2,24 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
-
 namespace pdeface::vrml::detail {
 
-void Context::add_note(std::string text) {
-  const auto same =
-      std::find_if(notes_.begin(), notes_.end(), [&](const auto& n) { return n.first == text; });
-  if (same != notes_.end())
-    ++same->second;
-  else
+void Context::add_note(std::string text, bool positioned) {
+  if (const auto found = index_.find(text); found != index_.end()) {
+    ++notes_[found->second].second;
+  } else if (positioned && positioned_ == kMaxPositionedNotes) {
+    ++more_;
+  } else {
+    positioned_ += positioned ? 1 : 0;
+    index_.emplace(text, notes_.size());
     notes_.emplace_back(std::move(text), 1);
+  }
 }
 
-void Context::note(std::string_view text) { add_note(fmt::format(": {}", text)); }
+void Context::note(std::string_view text) { add_note(fmt::format(": {}", text), false); }
 
 void Context::note(const Position& at, std::string_view text) {
-  add_note(fmt::format(":{}:{}: {}", at.line, at.column, text));
+  add_note(fmt::format(":{}:{}: {}", at.line, at.column, text), true);
 }
 
 void Context::flush_notes(Notes* out) const {
@@ -27,6 +28,7 @@ void Context::flush_notes(Notes* out) const {
   for (const auto& [text, times] : notes_)
     out->push_back(times > 1 ? fmt::format("{}{} ({} times)", source, text, times)
                              : fmt::format("{}{}", source, text));
+  if (more_ > 0) out->push_back(fmt::format("{}: {} more notes like those above not shown", source, more_));
 }
 
 Position Context::locate(const IndexList& list, std::size_t k) const {

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -41,7 +42,8 @@ public:
 
   //! A note for the user, once per distinct text (repeats are counted, not listed).
   void note(std::string_view text);
-  //! A note about the token at `at`.
+  //! A note about the token at `at`. Past kMaxPositionedNotes of them, the rest are only counted: a
+  //! file with a hundred thousand shapes should not give as many notes.
   void note(const Position& at, std::string_view text);
   //! Appends the notes, each prefixed with the source name, to `out`.
   void flush_notes(Notes* out) const;
@@ -50,11 +52,16 @@ public:
   [[nodiscard]] Position locate(const IndexList& list, std::size_t k) const;
 
 private:
-  void add_note(std::string text); // text starts with ": " or ":line:col: ", to follow the source name
+  void add_note(std::string text, bool positioned); // text starts with ": " or ":line:col: "
 
   std::string_view bytes_;
   std::string_view source_;
+  static constexpr std::size_t kMaxPositionedNotes = 50;
+
   std::vector<std::pair<std::string, std::size_t>> notes_; // text, times noted
+  std::unordered_map<std::string, std::size_t> index_;     // text -> position in notes_
+  std::size_t positioned_ = 0;                             // positioned notes kept
+  std::size_t more_ = 0;                                   // positioned notes past the limit
 };
 
 //! Quotes a token for a message: 'abc', or a readable name for the end of the input.

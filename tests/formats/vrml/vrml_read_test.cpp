@@ -270,6 +270,19 @@ Shape { geometry IndexedFaceSet { coord USE C2 } }
   EXPECT_EQ(mesh->positions[3], Vec3(5, 5, 5));
 }
 
+TEST(VrmlRead, ManyNotesAreCountedNotListed) {
+  std::string text = "#VRML V2.0 utf8\n";
+  for (int i = 0; i < 200; ++i)
+    text += "Shape { geometry IndexedFaceSet { coord Coordinate { point [ 0 0 0, 1 0 0, 0 1 0 ] } "
+            "coordIndex [ 0 1 2 -1 ] colorPerVertex FALSE color Color { color 1 0 0 } } }\n";
+  Notes notes;
+  const Result<Mesh> mesh = read_vrml(text, &notes);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  EXPECT_EQ(mesh->triangle_count(), 200U);
+  EXPECT_EQ(notes.size(), 51U);
+  EXPECT_EQ(notes.back(), "test.wrl: 150 more notes like those above not shown");
+}
+
 // --- VRML 1.0 ----------------------------------------------------------------------------------------------
 
 TEST(VrmlRead, Vrml1SeparatorsScopeTheState) {
