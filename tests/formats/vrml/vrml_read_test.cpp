@@ -75,8 +75,8 @@ TEST(VrmlRead, NestedTransformsComposeWithCenterAndScaleOrientation) {
 
 TEST(VrmlRead, DefUseInstancesShapesAndSharesCoordinates) {
   const Mesh mesh = read_fixture("v2_instancing.wrl");
-  ASSERT_EQ(mesh.vertex_count(), 18U);
-  ASSERT_EQ(mesh.triangle_count(), 6U);
+  ASSERT_EQ(mesh.vertex_count(), 24U);
+  ASSERT_EQ(mesh.triangle_count(), 8U);
   const Vec3 corner(1, 0, 0);
   expect_near(mesh.positions[1], corner);                  // DEF Tri itself
   expect_near(mesh.positions[4], corner + Vec3(5, 0, 0));  // USE Tri under translation 5 0 0
@@ -86,6 +86,9 @@ TEST(VrmlRead, DefUseInstancesShapesAndSharesCoordinates) {
   expect_near(mesh.positions[13], corner);                 // DEF Pair
   expect_near(mesh.positions[16], corner + Vec3(0, 0, 9)); // USE Pair under translation 0 0 9
   EXPECT_EQ(mesh.triangles[5], (Triangle{15, 16, 17}));
+  expect_near(mesh.positions[19], corner + Vec3(0, 0, 20)); // DEF Lifted (a Transform)
+  expect_near(mesh.positions[22], corner + Vec3(1, 0, 20)); // USE Lifted under translation 1 0 0
+  EXPECT_EQ(mesh.triangles[7], (Triangle{21, 22, 23}));
 }
 
 TEST(VrmlRead, PolygonsAreFanTriangulatedAndCcwFalseFlips) {
