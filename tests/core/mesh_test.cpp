@@ -1,4 +1,5 @@
 #include "pdeface/core/mesh.hpp"
+#include "pdeface/core/sample_face.hpp"
 #include "pdeface/core/topology.hpp"
 
 #include <gtest/gtest.h>
@@ -113,6 +114,26 @@ TEST(Components, LabelsAndDroppingSmallPieces) {
   EXPECT_EQ(big.colors.size(), 6U);
   EXPECT_TRUE(validate(big).ok());
   EXPECT_EQ(drop_small_components(m, 0.2).vertex_count(), 9U); // the loose vertex goes, the triangle stays
+}
+
+} // namespace
+} // namespace pdeface
+
+namespace pdeface {
+namespace {
+
+// A triangle whose first vertex is not the smallest root: the second union must link roots, not the
+// vertex that the first union moved (a bug that split components and left dangling indices).
+TEST(Components, UnionsLinkRootsWhateverTheOrder) {
+  Mesh m;
+  m.positions.assign(6, Vec3::Zero());
+  m.triangles = {{3, 4, 5}, {5, 1, 2}, {2, 0, 3}};
+  EXPECT_EQ(component_labels(m), (std::vector<std::uint32_t>(6, 0)));
+  for (const Mesh& sample : {sample_face({.spacing_mm = 4.0})}) {
+    const Mesh kept = drop_small_components(sample, 0.5);
+    EXPECT_TRUE(validate(kept).ok());
+    EXPECT_EQ(kept.vertex_count(), sample.vertex_count());
+  }
 }
 
 } // namespace

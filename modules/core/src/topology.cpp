@@ -56,8 +56,8 @@ std::vector<std::uint32_t> component_labels(const Mesh& mesh) {
     return v;
   };
   for (const Triangle& t : mesh.triangles) {
-    const std::uint32_t a = find(t[0]);
     for (int i = 1; i < 3; ++i) {
+      const std::uint32_t a = find(t[0]); // again each time: the first union may have moved t[0]'s root
       const std::uint32_t b = find(t[static_cast<std::size_t>(i)]);
       if (a != b) parent[std::max(a, b)] = std::min(a, b);
     }
