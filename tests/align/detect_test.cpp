@@ -15,8 +15,10 @@ double degrees_between(const Vec3& a, const Vec3& b) {
 }
 
 Mesh transformed(Mesh m, const Eigen::Matrix3d& r, const Vec3& t, double scale) {
-  for (Vec3& p : m.positions) p = scale * (r * p) + t;
-  for (Vec3f& n : m.normals) n = r.cast<float>() * n;
+  for (Vec3& p : m.positions)
+    p = scale * (r * p) + t;
+  for (Vec3f& n : m.normals)
+    n = r.cast<float>() * n;
   m.units = Units::Unknown;
   return m;
 }
@@ -26,7 +28,8 @@ class SampleInAnyPose : public ::testing::TestWithParam<int> {};
 TEST_P(SampleInAnyPose, FindsTheNoseAndTheFrame) {
   std::mt19937 rng(static_cast<unsigned>(GetParam()));
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const Eigen::Matrix3d r = Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
+  const Eigen::Matrix3d r =
+      Eigen::Quaterniond(u(rng), u(rng), u(rng), u(rng)).normalized().toRotationMatrix();
   const Vec3 t(300 * u(rng), 300 * u(rng), 1000 + 300 * u(rng));
   const Mesh face = sample_face();
   const Mesh scan = transformed(face, r, t, 1.0);
@@ -41,11 +44,65 @@ TEST_P(SampleInAnyPose, FindsTheNoseAndTheFrame) {
   EXPECT_LT(degrees_between(found->frame.axis_in_scan(2), r * Vec3::UnitZ()), 8.0);
   EXPECT_GT(found->confidence, 0.5);
   EXPECT_EQ(found->landmarks.count(), kLandmarkCount);
-  std::printf("pose %d: confidence %.2f symmetry %.2f nose %.1f fit %.1f\n", GetParam(), found->confidence,
-              found->symmetry_rms_mm, found->nose_prominence_mm, found->fit_rms_mm);
+  // Corners within 5 mm of where the sample face has them (their hollows are 5 mm wide).
+  const SampleFaceLandmarks truth = sample_face_landmarks();
+  const std::pair<Landmark, Vec3> corners[] = {
+      {Landmark::EyeInnerLeft, truth.eye_inner_left}, {Landmark::EyeInnerRight, truth.eye_inner_right},
+      {Landmark::EyeOuterLeft, truth.eye_outer_left}, {Landmark::EyeOuterRight, truth.eye_outer_right},
+      {Landmark::MouthLeft, truth.mouth_left},        {Landmark::MouthRight, truth.mouth_right}};
+  for (const auto& [landmark, where] : corners)
+    EXPECT_LT((*found->landmarks[landmark] - (r * where + t)).norm(), 5.0) << name(landmark);
 }
 
-INSTANTIATE_TEST_SUITE_P(RandomRotations, SampleInAnyPose, ::testing::Range(1, 9));
+INSTANTIATE_TEST_SUITE_P(RandomRotations, SampleInAnyPose, ::testing::Range(1, 7));
+
+TEST(Detect, UpsideDownAndInMetres) {
+  const Eigen::Matrix3d r = Eigen::AngleAxisd(3.14159265358979, Vec3::UnitZ()).toRotationMatrix();
+  const Mesh scan = transformed(sample_face(), r, Vec3(0.1, 0.2, 0.9), 0.001);
+  auto found = detect_landmarks(scan);
+  ASSERT_TRUE(found.ok()) << found.error().to_string();
+  EXPECT_EQ(found->frame.scan_units, Units::Metres);
+  EXPECT_DOUBLE_EQ(found->frame.scale, 1000.0);
+  EXPECT_LT(degrees_between(found->frame.axis_in_scan(1), -Vec3::UnitY()), 8.0); // up is down in the scan
+  const Vec3 tip = found->frame.to_canonical(*found->landmarks[Landmark::NoseTip]);
+  EXPECT_LT(tip.norm(), 1e-9);
+}
+
+TEST(Detect, PointCloudsToo) {
+  const Mesh cloud = to_mesh(to_point_cloud(sample_face()));
+  auto found = detect_landmarks(cloud);
+  ASSERT_TRUE(found.ok()) << found.error().to_string();
+  EXPECT_LT((*found->landmarks[Landmark::NoseTip] - Vec3(0, 0, sample_face_height(0, 0))).norm(), 3.0);
+}
+
+// Shapes with symmetry planes but no nose: a sphere cap, a flat sheet, a box.
+TEST(Detect, NoFaceInShapesWithoutANose) {
+  Mesh cap;
+  for (int i = -40; i <= 40; ++i)
+    for (int j = -40; j <= 40; ++j) {
+      const double x = 2.0 * i, y = 2.0 * j;
+      if (x * x + y * y < 90.0 * 90.0)
+        cap.positions.emplace_back(x, y, std::sqrt(100.0 * 100.0 - x * x - y * y));
+    }
+  Mesh sheet;
+  for (int i = 0; i < 100; ++i)
+    for (int j = 0; j < 120; ++j)
+      sheet.positions.emplace_back(1.5 * i, 1.5 * j, 0.0);
+  for (const Mesh* shape : {&cap, &sheet}) {
+    auto found = detect_landmarks(*shape);
+    ASSERT_FALSE(found.ok());
+    EXPECT_EQ(found.error().code, ErrorCode::NoFace);
+    EXPECT_NE(found.error().message.find("no face found"), std::string::npos) << found.error().message;
+  }
+}
+
+TEST(Detect, TooFewPoints) {
+  Mesh tiny;
+  tiny.positions.assign(10, Vec3::Zero());
+  auto found = detect_landmarks(tiny);
+  ASSERT_FALSE(found.ok());
+  EXPECT_EQ(found.error().code, ErrorCode::Empty);
+}
 
 } // namespace
 } // namespace pdeface::align

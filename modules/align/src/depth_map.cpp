@@ -33,10 +33,14 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
     const Vec3& c = p[t[2]];
     const double area = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
     if (std::abs(area) < 1e-12) continue; // seen edge-on
-    const int cmin = std::max(0, static_cast<int>(std::ceil((std::min({a.x(), b.x(), c.x()}) - x0_) / cell_)));
-    const int cmax = std::min(cols() - 1, static_cast<int>(std::floor((std::max({a.x(), b.x(), c.x()}) - x0_) / cell_)));
-    const int rmin = std::max(0, static_cast<int>(std::ceil((std::min({a.y(), b.y(), c.y()}) - y0_) / cell_)));
-    const int rmax = std::min(rows() - 1, static_cast<int>(std::floor((std::max({a.y(), b.y(), c.y()}) - y0_) / cell_)));
+    const int cmin =
+        std::max(0, static_cast<int>(std::ceil((std::min({a.x(), b.x(), c.x()}) - x0_) / cell_)));
+    const int cmax =
+        std::min(cols() - 1, static_cast<int>(std::floor((std::max({a.x(), b.x(), c.x()}) - x0_) / cell_)));
+    const int rmin =
+        std::max(0, static_cast<int>(std::ceil((std::min({a.y(), b.y(), c.y()}) - y0_) / cell_)));
+    const int rmax =
+        std::min(rows() - 1, static_cast<int>(std::floor((std::max({a.y(), b.y(), c.y()}) - y0_) / cell_)));
     for (int r = rmin; r <= rmax; ++r) {
       const double y = y_of(r);
       for (int col = cmin; col <= cmax; ++col) {
@@ -96,6 +100,47 @@ std::optional<double> DepthMap::relief(double x, double y, double radius) const 
     }
   if (n < total / 2) return std::nullopt; // too close to the edge of the scan to judge
   return *centre - sum / n;
+}
+
+DepthMap DepthMap::smoothed(double sigma) const {
+  const int reach = static_cast<int>(std::ceil(3.0 * sigma / cell_));
+  std::vector<double> kernel(static_cast<std::size_t>(2 * reach + 1));
+  for (int i = -reach; i <= reach; ++i)
+    kernel[static_cast<std::size_t>(i + reach)] = std::exp(-0.5 * (i * cell_ / sigma) * (i * cell_ / sigma));
+  // Separable blur of z·known and of known, then their ratio: unknown cells do not pull depths to zero.
+  const Eigen::MatrixXd mask = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : 1.0; });
+  const Eigen::MatrixXd values = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+  auto blur = [&](const Eigen::MatrixXd& in) {
+    Eigen::MatrixXd rows_done = Eigen::MatrixXd::Zero(in.rows(), in.cols());
+    for (Eigen::Index r = 0; r < in.rows(); ++r)
+      for (int k = -reach; k <= reach; ++k)
+        for (Eigen::Index c = std::max<Eigen::Index>(0, -k); c < in.cols() && c + k < in.cols(); ++c)
+          rows_done(r, c) += kernel[static_cast<std::size_t>(k + reach)] * in(r, c + k);
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(in.rows(), in.cols());
+    for (int k = -reach; k <= reach; ++k)
+      for (Eigen::Index r = std::max<Eigen::Index>(0, -k); r < in.rows() && r + k < in.rows(); ++r)
+        out.row(r) += kernel[static_cast<std::size_t>(k + reach)] * rows_done.row(r + k);
+    return out;
+  };
+  const Eigen::MatrixXd weight = blur(mask);
+  const Eigen::MatrixXd sum = blur(values);
+  DepthMap out = *this;
+  for (Eigen::Index r = 0; r < z_.rows(); ++r)
+    for (Eigen::Index c = 0; c < z_.cols(); ++c)
+      out.z_(r, c) = std::isnan(z_(r, c)) ? z_(r, c) : sum(r, c) / weight(r, c);
+  return out;
+}
+
+std::optional<double> DepthMap::cupness(double x, double y) const {
+  const double h = cell_;
+  const auto c = at(x, y), e = at(x + h, y), w = at(x - h, y), n = at(x, y + h), s = at(x, y - h);
+  const auto ne = at(x + h, y + h), nw = at(x - h, y + h), se = at(x + h, y - h), sw = at(x - h, y - h);
+  if (!c || !e || !w || !n || !s || !ne || !nw || !se || !sw) return std::nullopt;
+  const double zxx = (*e - 2 * *c + *w) / (h * h);
+  const double zyy = (*n - 2 * *c + *s) / (h * h);
+  const double zxy = (*ne - *nw - *se + *sw) / (4 * h * h);
+  // Smaller eigenvalue of [[zxx, zxy], [zxy, zyy]].
+  return 0.5 * (zxx + zyy) - std::sqrt(0.25 * (zxx - zyy) * (zxx - zyy) + zxy * zxy);
 }
 
 } // namespace pdeface::align::detail

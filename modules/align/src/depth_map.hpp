@@ -27,6 +27,12 @@ public:
   //! Depth minus the mean depth over a disc of radius r (mm): negative in hollows, positive on bumps.
   [[nodiscard]] std::optional<double> relief(double x, double y, double r) const;
 
+  //! The map blurred by a Gaussian of `sigma` mm (unknown cells stay unknown and do not contribute).
+  [[nodiscard]] DepthMap smoothed(double sigma) const;
+  //! The smaller eigenvalue of the Hessian of z (1/mm): positive where the surface is a cup (concave
+  //! in every direction, as the corners of the eyes and mouth), negative on caps and ridges.
+  [[nodiscard]] std::optional<double> cupness(double x, double y) const;
+
   [[nodiscard]] double cell() const { return cell_; }
   [[nodiscard]] int cols() const { return static_cast<int>(z_.cols()); }
   [[nodiscard]] int rows() const { return static_cast<int>(z_.rows()); }

@@ -9,9 +9,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cmath>
 #include <numbers>
 #include <numeric>
 #include <unordered_map>
@@ -41,13 +41,15 @@ std::vector<Vec3> voxel_subsample(std::span<const Vec3> points, double cell) {
 std::vector<Vec3> thin(std::span<const Vec3> points, std::size_t count) {
   const std::size_t step = std::max<std::size_t>(1, points.size() / std::max<std::size_t>(count, 1));
   std::vector<Vec3> out;
-  for (std::size_t i = 0; i < points.size(); i += step) out.push_back(points[i]);
+  for (std::size_t i = 0; i < points.size(); i += step)
+    out.push_back(points[i]);
   return out;
 }
 
 double median_spacing(std::span<const Vec3> points, const PointIndex& index) {
   std::vector<double> d;
-  for (const Vec3& p : thin(points, 400)) d.push_back(index.nearest(p, 2).back().distance);
+  for (const Vec3& p : thin(points, 400))
+    d.push_back(index.nearest(p, 2).back().distance);
   std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2));
   return d[d.size() / 2];
 }
@@ -62,7 +64,8 @@ struct Mirror {
 };
 
 Mirror mirror_of(const Plane& plane) {
-  return {Eigen::Matrix3d::Identity() - 2.0 * plane.normal * plane.normal.transpose(), 2.0 * plane.offset * plane.normal};
+  return {Eigen::Matrix3d::Identity() - 2.0 * plane.normal * plane.normal.transpose(),
+          2.0 * plane.offset * plane.normal};
 }
 
 // The symmetry plane of an improper isometry: the normal is the eigenvector of its symmetric part with
@@ -71,7 +74,8 @@ Plane plane_of(const Mirror& m, std::span<const Vec3> points) {
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (m.a + m.a.transpose()));
   const Vec3 n = eig.eigenvectors().col(0).normalized();
   double offset = 0.0;
-  for (const Vec3& p : points) offset += n.dot(0.5 * (p + m(p)));
+  for (const Vec3& p : points)
+    offset += n.dot(0.5 * (p + m(p)));
   return {n, offset / static_cast<double>(points.size())};
 }
 
@@ -80,16 +84,19 @@ Plane plane_of(const Mirror& m, std::span<const Vec3> points) {
 double mirror_rms(const Mirror& m, std::span<const Vec3> points, const PointIndex& index, double keep = 0.7) {
   std::vector<double> d;
   d.reserve(points.size());
-  for (const Vec3& p : points) d.push_back(index.nearest(m(p)).distance);
+  for (const Vec3& p : points)
+    d.push_back(index.nearest(m(p)).distance);
   const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(keep * static_cast<double>(d.size())));
   std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(n - 1));
   double sum = 0.0;
-  for (std::size_t i = 0; i < n; ++i) sum += d[i] * d[i];
+  for (std::size_t i = 0; i < n; ++i)
+    sum += d[i] * d[i];
   return std::sqrt(sum / static_cast<double>(n));
 }
 
 // Registration of the mirrored scan onto the scan (trimmed ICP, rigid fits by Eigen::umeyama).
-Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all, const PointIndex& index) {
+Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all, const PointIndex& index,
+              double keep = 0.7) {
   const auto n = points.size();
   Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(n)), dst(3, static_cast<Eigen::Index>(n));
   std::vector<std::pair<double, std::size_t>> order(n);
@@ -101,7 +108,8 @@ Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all,
       target[i] = all[nn.index];
       order[i] = {nn.distance, i};
     }
-    const std::size_t kept = std::max<std::size_t>(3, 7 * n / 10);
+    const std::size_t kept =
+        std::max<std::size_t>(3, static_cast<std::size_t>(keep * static_cast<double>(n)));
     std::ranges::nth_element(order, order.begin() + static_cast<std::ptrdiff_t>(kept - 1));
     for (std::size_t j = 0; j < kept; ++j) {
       src.col(static_cast<Eigen::Index>(j)) = moved[order[j].second];
@@ -205,14 +213,30 @@ std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_
   for (double x = x_from; (x_to - x) * step >= 0.0; x += step) {
     std::pair<double, Eigen::Vector2d> best{std::numeric_limits<double>::infinity(), {x, 0.0}};
     for (double y = y0; y <= y1; y += map.cell())
-      if (const auto rel = map.relief(x, y, r); rel && *rel < best.first) best = {*rel, Eigen::Vector2d(x, y)};
+      if (const auto rel = map.relief(x, y, r); rel && *rel < best.first)
+        best = {*rel, Eigen::Vector2d(x, y)};
     columns.push_back(best);
   }
   const auto deepest = std::ranges::min_element(columns, {}, &std::pair<double, Eigen::Vector2d>::first);
   if (deepest == columns.end() || !(deepest->first < 0.0)) return std::nullopt;
   auto end = deepest;
-  for (auto it = deepest; it != columns.end() && it->first <= fraction * deepest->first; ++it) end = it;
+  for (auto it = deepest; it != columns.end() && it->first <= fraction * deepest->first; ++it)
+    end = it;
   return end->second;
+}
+
+// The most cup-shaped point of a window, as (x, y) in the frame.
+std::optional<Eigen::Vector2d> most_cupped(const detail::DepthMap& map, double x0, double x1, double y0,
+                                           double y1) {
+  std::optional<Eigen::Vector2d> best;
+  double top = 0.0; // only cups count
+  for (double y = y0; y <= y1; y += map.cell())
+    for (double x = std::min(x0, x1); x <= std::max(x0, x1); x += map.cell())
+      if (const auto k = map.cupness(x, y); k && *k > top) {
+        top = *k;
+        best = Eigen::Vector2d(x, y);
+      }
+  return best;
 }
 
 // A rigid map into a face frame (mm): q = rotation · p + translation.
@@ -228,7 +252,8 @@ struct Rigid {
 Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangle> triangles, double spacing,
                            const Rigid& frame) {
   std::vector<Vec3> local(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) local[i] = frame.rotation * points[i] + frame.translation;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    local[i] = frame.rotation * points[i] + frame.translation;
   detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
   map.rasterise(local, triangles, std::max(1.0, 0.75 * spacing));
   map.fill_holes(4);
@@ -240,24 +265,37 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
 
   Landmarks found;
   auto place = [&](Landmark l, double x, double y) {
-    if (const auto z = map.at(x, y)) found[l] = Vec3(frame.rotation.transpose() * (Vec3(x, y, *z) - frame.translation));
+    if (const auto z = map.at(x, y))
+      found[l] = Vec3(frame.rotation.transpose() * (Vec3(x, y, *z) - frame.translation));
   };
   if (!tip) return found;
   place(Landmark::NoseTip, tip->x(), tip->y());
   const double x0 = tip->x(), y0 = tip->y();
+  const detail::DepthMap cups = map.smoothed(2.5);
   std::vector<double> eye_y, mouth_y;
   for (double side : {1.0, -1.0}) {
     const bool left = side > 0;
-    if (const auto inner = hollow(map, x0 + side * 6.0, x0 + side * 28.0, y0 + 18.0, y0 + 50.0, 5.0)) {
+    // Eye corners are cups (concave in every direction) on a lightly smoothed map: the inner one between
+    // the nose bridge and the eyeball, the outer one 18-40 mm further out at about the same height.
+    if (const auto inner = most_cupped(cups, x0 + side * 6.0, x0 + side * 30.0, y0 + 15.0, y0 + 55.0)) {
       place(left ? Landmark::EyeInnerLeft : Landmark::EyeInnerRight, inner->x(), inner->y());
       eye_y.push_back(inner->y());
-      if (const auto outer = hollow_end(map, inner->x(), x0 + side * 65.0, inner->y() - 10.0, inner->y() + 10.0, 5.0))
+      if (const auto outer = most_cupped(cups, inner->x() + side * 18.0, inner->x() + side * 40.0,
+                                         inner->y() - 10.0, inner->y() + 8.0))
         place(left ? Landmark::EyeOuterLeft : Landmark::EyeOuterRight, outer->x(), outer->y());
     }
     if (const auto mouth = hollow_end(map, x0, x0 + side * 40.0, y0 - 55.0, y0 - 18.0, 5.0)) {
       place(left ? Landmark::MouthLeft : Landmark::MouthRight, mouth->x(), mouth->y());
       mouth_y.push_back(mouth->y());
     }
+  }
+  // A corner the surface shows on one side only (a shadowed or cut outer corner): mirror the other.
+  for (Landmark l : {Landmark::EyeOuterLeft, Landmark::EyeOuterRight, Landmark::EyeInnerLeft,
+                     Landmark::EyeInnerRight, Landmark::MouthLeft, Landmark::MouthRight}) {
+    const std::optional<Vec3>& other = found[mirrored(l)];
+    if (found.has(l) || !other) continue;
+    const Vec3 local = frame.rotation * *other + frame.translation;
+    place(l, 2.0 * x0 - local.x(), local.y());
   }
   auto mean = [](const std::vector<double>& v, double fallback) {
     return v.empty() ? fallback : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
@@ -282,7 +320,8 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   const double y_nasion = y_eyes + 4.0;
   const double y_top = y_nasion + 0.5 * (y_nasion - y_bottom);
   double y_scan = y_nasion;
-  while (y_scan < y_top && map.at(x0, y_scan + 1.0)) y_scan += 1.0;
+  while (y_scan < y_top && map.at(x0, y_scan + 1.0))
+    y_scan += 1.0;
   place(Landmark::FaceTop, x0, y_scan);
   return found;
 }
@@ -294,13 +333,15 @@ double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
   const std::string source = scan.name;
   if (scan.vertex_count() < 100)
-    return make_error(ErrorCode::Empty, fmt::format("{} points are too few to find a face in", scan.vertex_count()), source);
+    return make_error(ErrorCode::Empty,
+                      fmt::format("{} points are too few to find a face in", scan.vertex_count()), source);
   const Units units = detect_units(scan);
   const double mm = millimetres_per(units);
 
   // Work in millimetres, without loose fragments.
   Mesh work = drop_small_components(scan, options.min_fragment);
-  for (Vec3& p : work.positions) p *= mm;
+  for (Vec3& p : work.positions)
+    p *= mm;
   const std::vector<Vec3>& points = work.positions;
   const PointIndex index(points);
   const double spacing = median_spacing(points, index);
@@ -309,7 +350,8 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   const std::vector<Vec3> fit_points = thin(sample, 1500);
 
   Vec3 centroid = Vec3::Zero();
-  for (const Vec3& p : sample) centroid += p;
+  for (const Vec3& p : sample)
+    centroid += p;
   centroid /= static_cast<double>(sample.size());
 
   // Symmetry plane candidates through the centroid in every direction; the best few refined by ICP.
@@ -342,20 +384,41 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     if (nose->prominence < kMinNoseProminence) continue;
     // A good symmetry plane with a nose on it; among several, prefer symmetry, then the clearer nose.
     const double merit = nose->prominence / (1.0 + rms);
-    if (!chosen || merit > chosen->nose.prominence / (1.0 + chosen->rms)) chosen = Candidate{plane, rms, *nose};
+    if (!chosen || merit > chosen->nose.prominence / (1.0 + chosen->rms))
+      chosen = Candidate{plane, rms, *nose};
   }
   if (!chosen)
-    return make_error(ErrorCode::NoFace,
-                      fmt::format("no face found: no nose-like point on any symmetry plane (most prominent {:.1f} mm, "
-                                  "a nose stands at least {:.0f} mm out of its profile)",
-                                  best_prominence, kMinNoseProminence),
-                      source);
+    return make_error(
+        ErrorCode::NoFace,
+        fmt::format("no face found: no nose-like point on any symmetry plane (most prominent {:.1f} mm, "
+                    "a nose stands at least {:.0f} mm out of its profile)",
+                    best_prominence, kMinNoseProminence),
+        source);
+
+  // The scan's outline need not be symmetric (a cut, hair, an ear missing): refine the plane again on
+  // the central face only, around the nose, where a face is most symmetric and a scan most complete.
+  for (int round = 0; round < 2; ++round) {
+    std::vector<Vec3> central;
+    for (const Vec3& p : sample)
+      if ((p - chosen->nose.tip).norm() < 70.0) central.push_back(p);
+    if (central.size() < 50) break;
+    // Keep nearly every pair: on a face, which is close to a cylinder, the yaw of the plane shows only
+    // in the features (nose, eyes), and trimming would throw exactly them away.
+    const Mirror m = refine(mirror_of(chosen->plane), central, points, index, 0.95);
+    const Plane plane = plane_of(m, central);
+    const std::optional<Nose> nose = find_nose(plane, points, slab);
+    if (!nose || nose->prominence < kMinNoseProminence) break;
+    chosen = Candidate{plane, mirror_rms(mirror_of(plane), central, index), *nose};
+  }
 
   if (std::getenv("PDEFACE_DEBUG")) {
     const Nose& dn = chosen->nose;
-    std::fprintf(stderr, "plane n=(%.3f %.3f %.3f) d=%.2f rms=%.2f tip=(%.1f %.1f %.1f) fwd=(%.2f %.2f %.2f) up=(%.2f %.2f %.2f) prom=%.1f spacing=%.2f\n",
-                 chosen->plane.normal.x(), chosen->plane.normal.y(), chosen->plane.normal.z(), chosen->plane.offset, chosen->rms,
-                 dn.tip.x(), dn.tip.y(), dn.tip.z(), dn.forward.x(), dn.forward.y(), dn.forward.z(), dn.up.x(), dn.up.y(), dn.up.z(), dn.prominence, spacing);
+    std::fprintf(stderr,
+                 "plane n=(%.3f %.3f %.3f) d=%.2f rms=%.2f tip=(%.1f %.1f %.1f) fwd=(%.2f %.2f %.2f) "
+                 "up=(%.2f %.2f %.2f) prom=%.1f spacing=%.2f\n",
+                 chosen->plane.normal.x(), chosen->plane.normal.y(), chosen->plane.normal.z(),
+                 chosen->plane.offset, chosen->rms, dn.tip.x(), dn.tip.y(), dn.tip.z(), dn.forward.x(),
+                 dn.forward.y(), dn.forward.z(), dn.up.x(), dn.up.y(), dn.up.z(), dn.prominence, spacing);
   }
   // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
   const Nose& nose = chosen->nose;
@@ -395,15 +458,17 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     }
   out.fit_rms_mm = std::sqrt(sum / n);
   const double coverage = static_cast<double>(found.count()) / kLandmarkCount;
-  out.confidence = std::min({clamp01(1.0 - (out.symmetry_rms_mm - 2.0) / 6.0), clamp01((nose.prominence - kMinNoseProminence) / 12.0),
-                             clamp01(1.0 - (out.fit_rms_mm - 6.0) / 12.0), coverage});
+  out.confidence = std::min({clamp01(1.0 - (out.symmetry_rms_mm - 2.0) / 6.0),
+                             clamp01((nose.prominence - kMinNoseProminence) / 12.0),
+                             clamp01(1.0 - (out.fit_rms_mm - 8.0) / 14.0), coverage});
   if (out.confidence < options.min_confidence)
-    return make_error(ErrorCode::NoFace,
-                      fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
-                                  "landmark fit {:.1f} mm, {} of {} landmarks)",
-                                  out.confidence, options.min_confidence, out.symmetry_rms_mm, nose.prominence,
-                                  out.fit_rms_mm, found.count(), kLandmarkCount),
-                      source);
+    return make_error(
+        ErrorCode::NoFace,
+        fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
+                    "landmark fit {:.1f} mm, {} of {} landmarks)",
+                    out.confidence, options.min_confidence, out.symmetry_rms_mm, nose.prominence,
+                    out.fit_rms_mm, found.count(), kLandmarkCount),
+        source);
   return out;
 }
 

@@ -17,20 +17,21 @@ Units detect_units(const Mesh& scan) {
 
 const Landmarks& canonical_template() {
   static const Landmarks t = [] {
-    // Adult averages (Farkas' anthropometry, rounded): intercanthal width 32 mm, biocular width 90 mm,
-    // mouth width 50 mm; eye corners 38 mm above the nose tip, mouth corners 35 mm below; the face
-    // region from hairline to chin ~165 mm. Depths follow the curvature of the face.
+    // Adult averages (Farkas' anthropometry, rounded) checked against the landmarks found on the real
+    // scans in ../shared/faces: intercanthal width 30 mm, biocular width 96 mm, mouth width 52 mm; eye
+    // corners 34-37 mm above the nose tip, mouth corners 31 mm below; the face region from hairline to
+    // chin ~165 mm. Depths follow the curvature of the face.
     Landmarks l;
     l.units = Units::Millimetres;
     l[Landmark::NoseTip] = Vec3(0, 0, 0);
-    l[Landmark::EyeInnerLeft] = Vec3(16, 38, -30);
-    l[Landmark::EyeInnerRight] = Vec3(-16, 38, -30);
-    l[Landmark::EyeOuterLeft] = Vec3(45, 36, -42);
-    l[Landmark::EyeOuterRight] = Vec3(-45, 36, -42);
-    l[Landmark::MouthLeft] = Vec3(25, -35, -25);
-    l[Landmark::MouthRight] = Vec3(-25, -35, -25);
-    l[Landmark::FaceTop] = Vec3(0, 85, -22);
-    l[Landmark::FaceBottom] = Vec3(0, -80, -22);
+    l[Landmark::EyeInnerLeft] = Vec3(15, 37, -34);
+    l[Landmark::EyeInnerRight] = Vec3(-15, 37, -34);
+    l[Landmark::EyeOuterLeft] = Vec3(48, 34, -46);
+    l[Landmark::EyeOuterRight] = Vec3(-48, 34, -46);
+    l[Landmark::MouthLeft] = Vec3(26, -31, -33);
+    l[Landmark::MouthRight] = Vec3(-26, -31, -33);
+    l[Landmark::FaceTop] = Vec3(0, 88, -32);
+    l[Landmark::FaceBottom] = Vec3(0, -78, -28);
     return l;
   }();
   return t;
@@ -55,10 +56,11 @@ Result<FaceFrame> frame_from_landmarks(const Landmarks& landmarks, Units scan_un
   const Eigen::Matrix3Xd centred = src.colwise() - src.rowwise().mean();
   const Eigen::JacobiSVD<Eigen::Matrix3Xd> svd(centred);
   if (from.size() < 3 || svd.singularValues()(1) < 1e-6 * std::max(1.0, svd.singularValues()(0)))
-    return make_error(ErrorCode::InvalidArgument,
-                      fmt::format("{} landmarks given, and they are collinear or too few: the nose tip and at "
-                                  "least two eye or mouth corners are needed",
-                                  from.size()));
+    return make_error(
+        ErrorCode::InvalidArgument,
+        fmt::format("{} landmarks given, and they are collinear or too few: the nose tip and at "
+                    "least two eye or mouth corners are needed",
+                    from.size()));
   const Eigen::Matrix4d m = Eigen::umeyama(src, dst, false);
   FaceFrame frame;
   frame.rotation = m.topLeftCorner<3, 3>();
@@ -72,9 +74,11 @@ namespace {
 
 Mesh mapped(const Mesh& mesh, const auto& map_point, const Eigen::Matrix3d& normal_rotation, Units units) {
   Mesh out = mesh;
-  for (Vec3& p : out.positions) p = map_point(p);
+  for (Vec3& p : out.positions)
+    p = map_point(p);
   const Eigen::Matrix3f r = normal_rotation.cast<float>();
-  for (Vec3f& n : out.normals) n = r * n;
+  for (Vec3f& n : out.normals)
+    n = r * n;
   out.units = units;
   return out;
 }
@@ -82,12 +86,14 @@ Mesh mapped(const Mesh& mesh, const auto& map_point, const Eigen::Matrix3d& norm
 } // namespace
 
 Mesh to_canonical(const Mesh& scan, const FaceFrame& frame) {
-  return mapped(scan, [&](const Vec3& p) { return frame.to_canonical(p); }, frame.rotation, Units::Millimetres);
+  return mapped(
+      scan, [&](const Vec3& p) { return frame.to_canonical(p); }, frame.rotation, Units::Millimetres);
 }
 
 Mesh to_scan(const Mesh& canonical, const FaceFrame& frame) {
-  return mapped(canonical, [&](const Vec3& p) { return frame.to_scan(p); }, frame.rotation.transpose(),
-                frame.scan_units);
+  return mapped(
+      canonical, [&](const Vec3& p) { return frame.to_scan(p); }, frame.rotation.transpose(),
+      frame.scan_units);
 }
 
 Landmarks to_canonical(const Landmarks& scan, const FaceFrame& frame) {

@@ -13,8 +13,8 @@ namespace {
 using nlohmann::json;
 
 constexpr std::array<std::string_view, kLandmarkCount> kNames{
-    "nose_tip",  "eye_inner_left", "eye_inner_right", "eye_outer_left", "eye_outer_right",
-    "mouth_left", "mouth_right",   "face_top",        "face_bottom"};
+    "nose_tip",   "eye_inner_left", "eye_inner_right", "eye_outer_left", "eye_outer_right",
+    "mouth_left", "mouth_right",    "face_top",        "face_bottom"};
 
 constexpr std::array<std::pair<Units, std::string_view>, 4> kUnitNames{
     {{Units::Millimetres, "mm"}, {Units::Centimetres, "cm"}, {Units::Metres, "m"}, {Units::Inches, "in"}}};
@@ -99,23 +99,28 @@ Result<Landmarks> read_landmarks_json(std::string_view bytes, std::string_view s
   Result<json> parsed = parse_json(bytes, source);
   if (!parsed) return std::move(parsed).error();
   const json& j = *parsed;
-  auto fail = [&](std::string message) { return make_error(ErrorCode::Malformed, std::move(message), std::string(source)); };
+  auto fail = [&](std::string message) {
+    return make_error(ErrorCode::Malformed, std::move(message), std::string(source));
+  };
   if (!j.is_object() || !j.contains("landmarks") || !j["landmarks"].is_object())
     return fail("expected an object with a \"landmarks\" object (see docs/align.md)");
   if (j.contains("version") && j["version"] != 1)
-    return make_error(ErrorCode::UnsupportedVersion, fmt::format("landmark file version {} (we read 1)", j["version"].dump()),
+    return make_error(ErrorCode::UnsupportedVersion,
+                      fmt::format("landmark file version {} (we read 1)", j["version"].dump()),
                       std::string(source));
   Landmarks out;
   if (j.contains("units")) {
     const auto it = std::ranges::find_if(kUnitNames, [&](const auto& u) { return j["units"] == u.second; });
-    if (it == kUnitNames.end()) return fail(fmt::format("unknown units {} (mm, cm, m or in)", j["units"].dump()));
+    if (it == kUnitNames.end())
+      return fail(fmt::format("unknown units {} (mm, cm, m or in)", j["units"].dump()));
     out.units = it->first;
   }
   for (const auto& [key, value] : j["landmarks"].items()) {
     const std::optional<Landmark> l = landmark_from_name(key);
     if (!l) return fail(fmt::format("unknown landmark \"{}\" (known: nose_tip, eye_inner_left, ...)", key));
     const std::optional<Vec3> p = to_point(value);
-    if (!p) return fail(fmt::format("landmark \"{}\" must be three finite numbers, not {}", key, value.dump()));
+    if (!p)
+      return fail(fmt::format("landmark \"{}\" must be three finite numbers, not {}", key, value.dump()));
     out[*l] = p;
   }
   return out;
@@ -137,13 +142,16 @@ Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source) {
   Result<json> parsed = parse_json(bytes, source);
   if (!parsed) return std::move(parsed).error();
   const json& j = *parsed;
-  auto fail = [&](std::string message) { return make_error(ErrorCode::Malformed, std::move(message), std::string(source)); };
+  auto fail = [&](std::string message) {
+    return make_error(ErrorCode::Malformed, std::move(message), std::string(source));
+  };
   if (!j.is_object()) return fail("expected a menpo LJSON object");
 
   // Version 2-3: groups -> {labels: [{label, mask}], landmarks: {points}}; version 1: top-level
   // landmarks.points and labels.
   const json* group = &j;
-  if (j.contains("groups") && j["groups"].is_object() && !j["groups"].empty()) group = &j["groups"].begin().value();
+  if (j.contains("groups") && j["groups"].is_object() && !j["groups"].empty())
+    group = &j["groups"].begin().value();
   if (!group->contains("landmarks") || !(*group)["landmarks"].contains("points") ||
       !(*group)["landmarks"]["points"].is_array())
     return fail("no landmarks.points array (not a menpo LJSON file?)");
@@ -153,11 +161,14 @@ Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source) {
     if (index >= points.size())
       return fail(fmt::format("mask index {} is out of range: there are {} points", index, points.size()));
     const std::optional<Vec3> p = to_point(points[index]);
-    if (!p) return fail(fmt::format("point {} is not three finite numbers (2D landmarks cannot place a 3D face)", index));
+    if (!p)
+      return fail(
+          fmt::format("point {} is not three finite numbers (2D landmarks cannot place a 3D face)", index));
     return *p;
   };
   // The k-th point of the first label named one of `names`; nullopt if there is no such label.
-  auto labelled = [&](std::initializer_list<std::string_view> names, std::size_t k) -> Result<std::optional<Vec3>> {
+  auto labelled = [&](std::initializer_list<std::string_view> names,
+                      std::size_t k) -> Result<std::optional<Vec3>> {
     if (!group->contains("labels") || !(*group)["labels"].is_array()) return std::optional<Vec3>{};
     for (const json& label : (*group)["labels"]) {
       if (!label.contains("label") || !label["label"].is_string()) continue;
@@ -177,8 +188,8 @@ Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source) {
   struct Rule {
     Landmark landmark;
     std::initializer_list<std::string_view> labels;
-    std::size_t k;       // position inside the label's mask
-    std::size_t ibug;    // index in a plain 68-point list
+    std::size_t k;    // position inside the label's mask
+    std::size_t ibug; // index in a plain 68-point list
   };
   const Rule rules[] = {
       {Landmark::NoseTip, {"nose"}, 3, 30},
@@ -199,7 +210,8 @@ Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source) {
       if (!q) return std::move(q).error();
       *p = *q;
     }
-    if (!*p) return fail(fmt::format("cannot find {}: neither iBUG labels nor 68 points", name(rule.landmark)));
+    if (!*p)
+      return fail(fmt::format("cannot find {}: neither iBUG labels nor 68 points", name(rule.landmark)));
     out[rule.landmark] = **p;
   }
   // Conventions differ on whether "left" is the image's or the face's; the geometry decides.

@@ -51,7 +51,8 @@ double mouth_span(double x) {
 }
 
 Vec4f skin_colour(double x, double y) {
-  const double lips = mouth_span(x) * std::max(bump(0.0, y, 0.0, -24.5, 1.0, 3.5), bump(0.0, y, 0.0, -36.5, 1.0, 4.0));
+  const double lips =
+      mouth_span(x) * std::max(bump(0.0, y, 0.0, -24.5, 1.0, 3.5), bump(0.0, y, 0.0, -36.5, 1.0, 4.0));
   const double brows = bump(x, y, -30.0, 39.0, 15.0, 3.0) + bump(x, y, 30.0, 39.0, 15.0, 3.0);
   const double r = 0.85 - 0.45 * brows + 0.02 * lips;
   const double g = 0.68 - 0.35 * brows - 0.25 * lips;
@@ -83,12 +84,18 @@ double sample_face_height(double x, double y) {
   z += 5.0 * (bump(x, y, -14.0, -5.0, 5.0, 5.0) + bump(x, y, 14.0, -5.0, 5.0, 5.0)); // nose wings
 
   z += 3.5 * (bump(x, y, -32.0, 26.0, 7.0, 5.0) + bump(x, y, 32.0, 26.0, 7.0, 5.0)); // eyeballs
+  // Corners of the eyes and the mouth: small hollows, as on a real face (where landmarks are found).
+  for (double side : {-1.0, 1.0}) {
+    z -= 3.0 * bump(x, y, side * 17.0, 29.0, 2.5, 2.5);  // inner eye corner
+    z -= 3.0 * bump(x, y, side * 46.0, 30.0, 2.5, 2.5);  // outer eye corner
+    z -= 2.0 * bump(x, y, side * 23.0, -30.5, 2.5, 2.5); // mouth corner
+  }
   // Lips and the mouth line between them span the mouth's width (46 mm) and fade out at its corners.
   const double across = mouth_span(x);
   z += across * 5.0 * bump(0.0, y, 0.0, -24.5, 1.0, 4.0); // upper lip
   z += across * 4.5 * bump(0.0, y, 0.0, -36.5, 1.0, 4.5); // lower lip
   z -= across * 2.5 * bump(0.0, y, 0.0, -30.5, 1.0, 1.4); // mouth line
-  z += 6.0 * bump(x, y, 0.0, -64.0, 15.0, 8.0);                                      // chin
+  z += 6.0 * bump(x, y, 0.0, -64.0, 15.0, 8.0);           // chin
   return z;
 }
 

@@ -16,10 +16,10 @@
 namespace pdeface::align {
 
 struct DetectOptions {
-  double sample_mm = 3.0;        //!< spacing of the subsample the symmetry search works on
-  int directions = 400;          //!< candidate symmetry-plane normals tried (spread over a hemisphere)
-  double min_confidence = 0.35;  //!< below this, detection fails with `NoFace`
-  double min_fragment = 0.02;    //!< mesh pieces with fewer vertices than this fraction are ignored
+  double sample_mm = 3.0;       //!< spacing of the subsample the symmetry search works on
+  int directions = 400;         //!< candidate symmetry-plane normals tried (spread over a hemisphere)
+  double min_confidence = 0.35; //!< below this, detection fails with `NoFace`
+  double min_fragment = 0.02;   //!< mesh pieces with fewer vertices than this fraction are ignored
 };
 
 //! A plane n · p = offset, in the scan's frame and units.
@@ -30,13 +30,13 @@ struct Plane {
 
 //! What detection found, and how sure it is.
 struct Detection {
-  Landmarks landmarks; //!< in the scan's frame and units
-  FaceFrame frame;     //!< scan -> canonical (from the landmarks)
-  Plane symmetry;      //!< the symmetry plane, in the scan's frame and units
-  double confidence = 0.0; //!< 0..1, the weakest of the cues below
-  double symmetry_rms_mm = 0.0;   //!< how far the mirrored scan lies from itself (trimmed RMS)
+  Landmarks landmarks;             //!< in the scan's frame and units
+  FaceFrame frame;                 //!< scan -> canonical (from the landmarks)
+  Plane symmetry;                  //!< the symmetry plane, in the scan's frame and units
+  double confidence = 0.0;         //!< 0..1, the weakest of the cues below
+  double symmetry_rms_mm = 0.0;    //!< how far the mirrored scan lies from itself (trimmed RMS)
   double nose_prominence_mm = 0.0; //!< how sharply the nose tip stands out of the symmetry profile
-  double fit_rms_mm = 0.0;        //!< residual of the landmarks against the average face after the fit
+  double fit_rms_mm = 0.0;         //!< residual of the landmarks against the average face after the fit
 };
 
 //! Finds the landmarks of the face in `scan`. Errors: `Empty` (too few points), `NoFace` (no nose-like

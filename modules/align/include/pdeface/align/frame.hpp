@@ -23,7 +23,9 @@ struct FaceFrame {
   Units scan_units = Units::Unknown;                      //!< the units the scan was found to be in
 
   [[nodiscard]] Vec3 to_canonical(const Vec3& p) const { return scale * (rotation * p) + translation; }
-  [[nodiscard]] Vec3 to_scan(const Vec3& q) const { return rotation.transpose() * ((q - translation) / scale); }
+  [[nodiscard]] Vec3 to_scan(const Vec3& q) const {
+    return rotation.transpose() * ((q - translation) / scale);
+  }
   //! The canonical frame's axes and origin expressed in the scan's frame.
   [[nodiscard]] Vec3 axis_in_scan(int axis) const { return rotation.row(axis).transpose(); }
   [[nodiscard]] Vec3 origin_in_scan() const { return to_scan(Vec3::Zero()); }

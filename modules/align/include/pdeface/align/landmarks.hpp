@@ -38,7 +38,9 @@ struct Landmarks {
   std::array<std::optional<Vec3>, kLandmarkCount> points;
   Units units = Units::Unknown;
 
-  [[nodiscard]] const std::optional<Vec3>& operator[](Landmark l) const { return points[static_cast<std::size_t>(l)]; }
+  [[nodiscard]] const std::optional<Vec3>& operator[](Landmark l) const {
+    return points[static_cast<std::size_t>(l)];
+  }
   [[nodiscard]] std::optional<Vec3>& operator[](Landmark l) { return points[static_cast<std::size_t>(l)]; }
   [[nodiscard]] bool has(Landmark l) const { return (*this)[l].has_value(); }
   [[nodiscard]] std::size_t count() const;
