@@ -188,21 +188,6 @@ std::optional<Nose> find_nose(const Plane& plane, std::span<const Vec3> points, 
 
 // ---- landmarks in the depth map -------------------------------------------------------------------------
 
-// The most hollow point of a window (relief over a disc of radius r), as (x, y) in the frame.
-std::optional<Eigen::Vector2d> hollow(const detail::DepthMap& map, double x0, double x1, double y0, double y1,
-                                      double r) {
-  std::optional<Eigen::Vector2d> best;
-  double lowest = std::numeric_limits<double>::infinity();
-  const double step = map.cell();
-  for (double y = y0; y <= y1; y += step)
-    for (double x = std::min(x0, x1); x <= std::max(x0, x1); x += step)
-      if (const auto rel = map.relief(x, y, r); rel && *rel < lowest) {
-        lowest = *rel;
-        best = Eigen::Vector2d(x, y);
-      }
-  return best;
-}
-
 // The lateral end of a horizontal hollow (the mouth line, the fissure of an eye): walking from x_from
 // towards x_to, the columns whose most hollow point (over [y0, y1]) is at least `fraction` as deep as
 // the deepest column's; the end is the last of them reached without a gap.
@@ -294,8 +279,8 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
                      Landmark::EyeInnerRight, Landmark::MouthLeft, Landmark::MouthRight}) {
     const std::optional<Vec3>& other = found[mirrored(l)];
     if (found.has(l) || !other) continue;
-    const Vec3 local = frame.rotation * *other + frame.translation;
-    place(l, 2.0 * x0 - local.x(), local.y());
+    const Vec3 seen = frame.rotation * *other + frame.translation;
+    place(l, 2.0 * x0 - seen.x(), seen.y());
   }
   auto mean = [](const std::vector<double>& v, double fallback) {
     return v.empty() ? fallback : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());

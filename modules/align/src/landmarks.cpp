@@ -95,10 +95,9 @@ std::size_t Landmarks::count() const {
   return static_cast<std::size_t>(std::ranges::count_if(points, [](const auto& p) { return p.has_value(); }));
 }
 
-Result<Landmarks> read_landmarks_json(std::string_view bytes, std::string_view source) {
-  Result<json> parsed = parse_json(bytes, source);
-  if (!parsed) return std::move(parsed).error();
-  const json& j = *parsed;
+namespace {
+
+Result<Landmarks> from_ours(const json& j, std::string_view source) {
   auto fail = [&](std::string message) {
     return make_error(ErrorCode::Malformed, std::move(message), std::string(source));
   };
@@ -126,22 +125,7 @@ Result<Landmarks> read_landmarks_json(std::string_view bytes, std::string_view s
   return out;
 }
 
-std::string write_landmarks_json(const Landmarks& landmarks) {
-  json j;
-  j["format"] = "pdeface-landmarks";
-  j["version"] = 1;
-  if (landmarks.units != Units::Unknown) j["units"] = to_string(landmarks.units);
-  json points = json::object();
-  for (std::size_t i = 0; i < kLandmarkCount; ++i)
-    if (const auto& p = landmarks.points[i]) points[std::string(kNames[i])] = {p->x(), p->y(), p->z()};
-  j["landmarks"] = std::move(points);
-  return j.dump(2) + "\n";
-}
-
-Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source) {
-  Result<json> parsed = parse_json(bytes, source);
-  if (!parsed) return std::move(parsed).error();
-  const json& j = *parsed;
+Result<Landmarks> from_ljson(const json& j, std::string_view source) {
   auto fail = [&](std::string message) {
     return make_error(ErrorCode::Malformed, std::move(message), std::string(source));
   };
@@ -217,6 +201,41 @@ Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source) {
   // Conventions differ on whether "left" is the image's or the face's; the geometry decides.
   if (left_and_right_swapped(out)) swap_left_and_right(out);
   return out;
+}
+
+} // namespace
+
+std::string write_landmarks_json(const Landmarks& landmarks) {
+  json j;
+  j["format"] = "pdeface-landmarks";
+  j["version"] = 1;
+  if (landmarks.units != Units::Unknown) j["units"] = to_string(landmarks.units);
+  json points = json::object();
+  for (std::size_t i = 0; i < kLandmarkCount; ++i)
+    if (const auto& p = landmarks.points[i]) points[std::string(kNames[i])] = {p->x(), p->y(), p->z()};
+  j["landmarks"] = std::move(points);
+  return j.dump(2) + "\n";
+}
+
+Result<Landmarks> read_landmarks_json(std::string_view bytes, std::string_view source) {
+  Result<json> parsed = parse_json(bytes, source);
+  if (!parsed) return std::move(parsed).error();
+  return from_ours(*parsed, source);
+}
+
+Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source) {
+  Result<json> parsed = parse_json(bytes, source);
+  if (!parsed) return std::move(parsed).error();
+  return from_ljson(*parsed, source);
+}
+
+Result<Landmarks> read_landmarks(std::string_view bytes, std::string_view source) {
+  Result<json> parsed = parse_json(bytes, source);
+  if (!parsed) return std::move(parsed).error();
+  const json& j = *parsed;
+  const bool menpo = j.is_object() && (j.contains("groups") || (j.contains("landmarks") && j["landmarks"].is_object() &&
+                                                                j["landmarks"].contains("points")));
+  return menpo ? from_ljson(j, source) : from_ours(j, source);
 }
 
 } // namespace pdeface::align

@@ -58,4 +58,8 @@ struct Landmarks {
 //! iBUG set has no forehead point: `face_top` stays missing.
 [[nodiscard]] Result<Landmarks> read_ljson(std::string_view bytes, std::string_view source);
 
+//! Either format, told apart by content: menpo LJSON (has "groups" or a top-level "landmarks" with
+//! "points") or ours.
+[[nodiscard]] Result<Landmarks> read_landmarks(std::string_view bytes, std::string_view source);
+
 } // namespace pdeface::align
