@@ -199,7 +199,7 @@ public:
   CornerAttribute(const std::vector<tinyobj::real_t>& values, int width, std::size_t vertices)
       : values_(values), width_(width), slot_(vertices, -1) {}
 
-  //! Vertex i takes value i: for point clouds with as many vn (or vt) as v.
+  // Vertex i takes value i: for point clouds with as many vn (or vt) as v.
   void by_order() {
     for (std::size_t i = 0; i < slot_.size(); ++i)
       slot_[i] = static_cast<int>(i);
@@ -213,11 +213,11 @@ public:
       ++conflicts_;
     }
   }
-  //! Whether every vertex has one value and no corner disagrees.
+  // Whether every vertex has one value and no corner disagrees.
   [[nodiscard]] bool consistent() const {
     return conflicts_ == 0 && missing_ == 0 && std::ranges::any_of(slot_, [](int s) { return s >= 0; });
   }
-  //! Why not, for a note.
+  // Why not, for a note.
   [[nodiscard]] std::string why_not() const {
     if (conflicts_ != 0)
       return fmt::format(
@@ -227,7 +227,7 @@ public:
     if (missing_ != 0) return fmt::format("{} face corners have none", missing_);
     return "they match no vertex (no faces, and not one per vertex)";
   }
-  //! The value of component `k` for a vertex (0 for vertices on no face).
+  // The value of component `k` for a vertex (0 for vertices on no face).
   [[nodiscard]] float at(std::size_t vertex, int k) const {
     const int slot = slot_[vertex];
     return slot < 0 ? 0.0f : values_[static_cast<std::size_t>(slot * width_ + k)];

@@ -1,10 +1,9 @@
 // OBJ: the real scans, every corner form and attribute mapping, round trips, every bad input with its
 // line and column.
 
-#include "pdeface/core/file.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/obj/obj.hpp"
-#include "pdeface_test.hpp"
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
@@ -25,21 +24,7 @@ Result<Mesh> read_obj(std::string_view text, Notes* notes = nullptr) {
   return obj::read(text, "t.obj", notes);
 }
 
-std::string fixture(std::string_view name) {
-  Result<std::string> bytes = read_file(fixtures() / "obj" / name);
-  EXPECT_TRUE(bytes.ok()) << name;
-  return bytes ? *bytes : std::string();
-}
-
-bool has_note(const Notes& notes, std::string_view text) {
-  return std::ranges::any_of(notes, [&](const std::string& n) { return n.find(text) != std::string::npos; });
-}
-
-Mesh float_rounded(Mesh mesh) {
-  for (Vec3& p : mesh.positions)
-    p = p.cast<float>().cast<double>();
-  return mesh;
-}
+std::string fixture(std::string_view name) { return pdeface::test::fixture("obj", name); }
 
 Mesh round_trip(const Mesh& mesh, const obj::WriteOptions& options = {}) {
   const Result<std::string> text = obj::write(mesh, options);
@@ -241,11 +226,7 @@ TEST(ObjReadErrors, EveryClassWithItsLineAndColumn) {
       {t + "v 1 1 \0 0\n"s, ErrorCode::Malformed, 4, 7},
   };
   for (const Case& c : cases) {
-    const Error e = [&] {
-      const Result<Mesh> r = read_obj(c.text);
-      EXPECT_FALSE(r.ok()) << c.text;
-      return r.ok() ? Error{} : r.error();
-    }();
+    const Error e = error_of(read_obj(c.text));
     EXPECT_EQ(e.code, c.code) << c.text << ": " << e.message;
     EXPECT_EQ(e.where.line, c.line) << c.text << ": " << e.message;
     EXPECT_EQ(e.where.column, c.column) << c.text << ": " << e.message;

@@ -1,6 +1,6 @@
 // OFF: reading (comments, COFF/NOFF, every bad input with its line and column) and round trips.
 
-#include "mesh_test_support.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/ply/ply.hpp"
 
@@ -16,10 +16,6 @@ namespace {
 
 Result<Mesh> read_off(std::string_view bytes, Notes* notes = nullptr) {
   return off::read(bytes, "t.off", notes);
-}
-
-bool has_note(const Notes& notes, std::string_view text) {
-  return std::ranges::any_of(notes, [&](const std::string& n) { return n.find(text) != std::string::npos; });
 }
 
 constexpr std::string_view kSquare = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n";

@@ -1,6 +1,6 @@
 // Reading PLY: the real scans, every attribute, and every class of bad input with its exact location.
 
-#include "mesh_test_support.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/ply/ply.hpp"
 
 #include <fmt/format.h>
@@ -19,10 +19,6 @@ namespace {
 
 Result<Mesh> read_ply(std::string_view bytes, Notes* notes = nullptr) {
   return ply::read(bytes, "t.ply", notes);
-}
-
-bool has_note(const Notes& notes, std::string_view text) {
-  return std::ranges::any_of(notes, [&](const std::string& n) { return n.find(text) != std::string::npos; });
 }
 
 // A small binary PLY: 4 coloured vertices, a quad and a triangle; `records` holds where each vertex and

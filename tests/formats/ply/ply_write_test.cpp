@@ -1,6 +1,6 @@
 // Writing PLY and reading it back: counts, float32 positions, attributes and units survive.
 
-#include "mesh_test_support.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/ply/ply.hpp"
 

@@ -1,7 +1,7 @@
 // Every encoding of this area through the public dispatcher (pdeface::formats), for the sample face and a
 // real scan: counts kept, positions exact in float32, the attributes each format holds kept.
 
-#include "mesh_test_support.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 

@@ -1,6 +1,6 @@
 // STL: binary and ASCII reading (corners merged into shared vertices), round trips, every bad input.
 
-#include "mesh_test_support.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/ply/ply.hpp"
 
@@ -18,10 +18,6 @@ namespace {
 
 Result<Mesh> read_stl(std::string_view bytes, Notes* notes = nullptr) {
   return stl::read(bytes, "t.stl", notes);
-}
-
-bool has_note(const Notes& notes, std::string_view text) {
-  return std::ranges::any_of(notes, [&](const std::string& n) { return n.find(text) != std::string::npos; });
 }
 
 // Two facets of a unit square, binary: 84 + 2 * 50 bytes.

@@ -1,7 +1,7 @@
 // Readers called from several threads at once (a batch run): OpenMesh's global readers are serialised by
 // our mutex, so every thread gets exactly the mesh a lone read gives. Run once under TSan/ASan.
 
-#include "mesh_test_support.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/ply/ply.hpp"
 

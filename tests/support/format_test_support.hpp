@@ -1,5 +1,5 @@
 #pragma once
-// Helpers for the PLY, OFF and STL tests: fixtures, binary packing, error and round-trip checks.
+// Helpers for the format tests: fixtures, binary packing, notes, errors and round-trip checks.
 
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/mesh.hpp"
@@ -7,9 +7,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstring>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace pdeface::test {
 
@@ -27,6 +30,11 @@ inline std::string fixture(std::string_view folder, std::string_view name) {
   Result<std::string> bytes = read_file(fixtures() / folder / name);
   EXPECT_TRUE(bytes.ok()) << name;
   return bytes ? *bytes : std::string();
+}
+
+//! Whether some note contains `text`.
+inline bool has_note(const Notes& notes, std::string_view text) {
+  return std::ranges::any_of(notes, [&](const std::string& n) { return n.find(text) != std::string::npos; });
 }
 
 //! The error of a result that must have failed.
