@@ -1,28 +1,41 @@
-// Placeholder until the format lands; returns an error so callers see it is missing.
 #include "pdeface/ply/ply.hpp"
-namespace pdeface {
-namespace ply {
-Result<Mesh> read(std::string_view, std::string_view source, Notes*) {
-  return make_error(ErrorCode::UnsupportedFormat, "PLY reader not built yet", std::string(source));
+
+#include "openmesh_io.hpp"
+#include "ply_layout.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace pdeface::ply {
+
+Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
+  Result<detail::Header> header = detail::parse_header(bytes, source, notes);
+  if (!header) return std::move(header).error();
+  Result<detail::DataRanges> data = detail::check_data(*header, bytes, source, notes);
+  if (!data) return std::move(data).error();
+  Result<Mesh> mesh =
+      detail::read_openmesh(detail::openmesh_input(*header, *data), {.extension = "ply"}, source, notes);
+  if (mesh) mesh->units = header->units;
+  return mesh;
 }
-Result<std::string> write(const Mesh&, const WriteOptions&, Notes*) {
-  return make_error(ErrorCode::UnsupportedFormat, "PLY writer not built yet");
+
+Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
+  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  const bool alpha = std::ranges::any_of(mesh.colors, [](const Vec4f& c) { return c[3] < 1.0f; });
+  Result<std::string> bytes = detail::write_openmesh(mesh,
+                                                     {.extension = "ply",
+                                                      .binary = options.binary,
+                                                      .normals = mesh.has_normals(),
+                                                      .colors = mesh.has_colors(),
+                                                      .alpha = alpha,
+                                                      .texcoords = mesh.has_texcoords()},
+                                                     "PLY", notes);
+  if (!bytes || mesh.units == Units::Unknown) return bytes;
+  // OpenMesh writes no comments: state the units after the format line, where our reader looks for them.
+  const std::size_t format_end = bytes->find('\n', bytes->find("\nformat ") + 1);
+  bytes->insert(format_end + 1, fmt::format("comment units {}\n", to_string(mesh.units)));
+  return bytes;
 }
-} // namespace ply
-namespace off {
-Result<Mesh> read(std::string_view, std::string_view source, Notes*) {
-  return make_error(ErrorCode::UnsupportedFormat, "OFF reader not built yet", std::string(source));
-}
-Result<std::string> write(const Mesh&, Notes*) {
-  return make_error(ErrorCode::UnsupportedFormat, "OFF writer not built yet");
-}
-} // namespace off
-namespace stl {
-Result<Mesh> read(std::string_view, std::string_view source, Notes*) {
-  return make_error(ErrorCode::UnsupportedFormat, "STL reader not built yet", std::string(source));
-}
-Result<std::string> write(const Mesh&, const WriteOptions&, Notes*) {
-  return make_error(ErrorCode::UnsupportedFormat, "STL writer not built yet");
-}
-} // namespace stl
-} // namespace pdeface
+
+} // namespace pdeface::ply

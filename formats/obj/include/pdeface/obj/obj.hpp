@@ -10,14 +10,23 @@
 
 namespace pdeface::obj {
 
-//! Parses an OBJ document (`v`, `vn`, `vt`, `f` with any polygon size, vertex colours after `v x y z`).
-//! Material libraries are not opened. Errors carry the line of the offending statement.
+//! Parses an OBJ document: `v` (optionally with `r g b`), `vt`, `vn`, and `f` in every corner form
+//! (`v`, `v/vt`, `v//vn`, `v/vt/vn`, negative = relative), polygons of up to 255 corners fan-triangulated
+//! from their first corner. Values are float32 precision (tinyobjloader). Per-corner texture coordinates
+//! and normals are kept when every corner of a vertex gives it the same value, else dropped with a note
+//! (vertices are never split). Units come from a `# units mm` comment, the name from the first `o`.
+//! Material libraries are never opened. Errors carry the line and column of the offending statement.
 [[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr);
 
 struct WriteOptions {
-  int precision = 9; //!< significant digits per coordinate (9 round-trips a float exactly)
+  //! Significant digits of each float32 value (1..17); 9 or more writes the shortest text that reads back
+  //! as the same float.
+  int precision = 9;
 };
 
+//! Writes `v x y z [r g b]`, `vn`, `vt`, then `f` with one index per attribute, a `# units` comment when
+//! the units are known and `o name` when the mesh has a name. Alpha is dropped with a note.
+//! Errors: `InvalidArgument` (precision), those of `validate`.
 [[nodiscard]] Result<std::string> write(const Mesh& mesh, const WriteOptions& options = {},
                                         Notes* notes = nullptr);
 

@@ -1,0 +1,200 @@
+// STL through OpenMesh, after a validator: OpenMesh's STL reader cannot tell binary from ASCII in a stream,
+// crashes on a lying facet count, accepts a cut-off file, and reads words and "nan" without complaint
+// (third_party_notes/openmesh.md). It merges coincident corners into shared vertices.
+
+#include "pdeface/ply/ply.hpp"
+
+#include "openmesh_io.hpp"
+#include "pdeface/text/scanner.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace pdeface::stl {
+namespace {
+
+using text::Scanner;
+using text::Token;
+
+constexpr std::size_t kHeaderBytes = 80;
+constexpr std::size_t kPreambleBytes = 84; // header + facet count
+constexpr std::size_t kFacetBytes = 50;    // normal, 3 corners (12 floats), 2 attribute bytes
+
+std::uint32_t load_u32(std::string_view bytes, std::size_t offset) {
+  std::array<unsigned char, 4> b{};
+  std::memcpy(b.data(), bytes.data() + offset, 4);
+  return static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
+         static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;
+}
+
+float load_float(std::string_view bytes, std::size_t offset) {
+  const std::uint32_t bits = load_u32(bytes, offset);
+  float value;
+  std::memcpy(&value, &bits, sizeof value);
+  return value;
+}
+
+// "units mm" anywhere in free text (the binary header, the solid line), as our writer puts it.
+Units units_in(std::string_view text) {
+  Scanner scan(text);
+  for (Token t = scan.next(); !t.empty(); t = scan.next())
+    if (t.text == "units")
+      if (const std::optional<Units> units = text::units_from_word(scan.next().text)) return *units;
+  return Units::Unknown;
+}
+
+// A file is binary when its size matches its facet count, even if its header starts with "solid" (some
+// exporters write that); otherwise it is ASCII if it starts with "solid".
+bool is_binary(std::string_view bytes) {
+  if (bytes.size() >= kPreambleBytes &&
+      kPreambleBytes + std::uint64_t{load_u32(bytes, kHeaderBytes)} * kFacetBytes == bytes.size())
+    return true;
+  return !Scanner(bytes).next().text.starts_with("solid");
+}
+
+struct Checked {
+  std::string_view data; // what OpenMesh reads: the file up to its last facet
+  Units units = Units::Unknown;
+};
+
+Result<Checked> check_binary(std::string_view bytes, std::string_view source, Notes* notes) {
+  auto fail = [&](ErrorCode code, std::size_t byte, std::string message) {
+    return make_error(code, std::move(message), std::string(source), Location::at_byte(byte));
+  };
+  if (bytes.size() < kPreambleBytes)
+    return fail(
+        ErrorCode::Truncated, bytes.size(),
+        fmt::format("the file has {} bytes; a binary STL starts with an 80-byte header and a 4-byte facet "
+                    "count",
+                    bytes.size()));
+  const std::uint64_t facets = load_u32(bytes, kHeaderBytes);
+  if (facets == 0) return make_error(ErrorCode::Empty, "the STL file has no facets", std::string(source));
+  if (facets * kFacetBytes > bytes.size())
+    return fail(ErrorCode::CountTooLarge, kHeaderBytes,
+                fmt::format("{} facets of 50 bytes declared ({} bytes), but the whole file has {} bytes",
+                            facets, facets * kFacetBytes, bytes.size()));
+  const std::uint64_t end = kPreambleBytes + facets * kFacetBytes;
+  if (end > bytes.size()) {
+    const std::uint64_t whole = (bytes.size() - kPreambleBytes) / kFacetBytes;
+    return fail(ErrorCode::Truncated, kPreambleBytes + whole * kFacetBytes,
+                fmt::format("the file ends at byte {} inside facet {} of {}, which starts here", bytes.size(),
+                            whole, facets));
+  }
+  // OpenMesh merges corners through an ordered map: a NaN would break its ordering.
+  for (std::uint64_t f = 0; f < facets; ++f)
+    for (std::size_t k = 3; k < 12; ++k) {
+      const std::size_t at = kPreambleBytes + f * kFacetBytes + 4 * k;
+      if (!std::isfinite(load_float(bytes, at)))
+        return fail(ErrorCode::NonFinite, at, fmt::format("facet {} has a non-finite corner coordinate", f));
+    }
+  if (notes && end < bytes.size())
+    notes->push_back(fmt::format("{}: {} bytes after the last facet ignored (from byte {})", source,
+                                 bytes.size() - end, end));
+  return Checked{bytes.substr(0, end), units_in(bytes.substr(0, kHeaderBytes))};
+}
+
+class AsciiChecker {
+public:
+  AsciiChecker(std::string_view bytes, std::string_view source)
+      : bytes_(bytes), scan_(bytes), source_(source) {}
+
+  // solid [name]  (facet normal n n n  outer loop  (vertex x y z){3}  endloop  endfacet)*  endsolid [name]
+  Result<Checked> run() {
+    scan_.next(); // "solid", checked by is_binary
+    Checked checked{{}, units_in(bytes_.substr(0, bytes_.find('\n')))};
+    scan_.skip_line();
+    std::uint64_t facets = 0;
+    for (Token t = scan_.next(); t.text != "endsolid"; t = scan_.next(), ++facets) {
+      if (t.empty()) return fail(ErrorCode::Truncated, scan_.here(), "the file ends without endsolid");
+      if (t.text != "facet") return unexpected(t, "facet or endsolid");
+      if (Result<void> ok = facet(); !ok) return std::move(ok).error();
+    }
+    if (facets == 0) return make_error(ErrorCode::Empty, "the STL file has no facets", std::string(source_));
+    scan_.skip_line();
+    checked.data = bytes_.substr(0, scan_.offset());
+    return checked;
+  }
+
+private:
+  Error fail(ErrorCode code, Location where, std::string message) const {
+    return make_error(code, std::move(message), std::string(source_), where);
+  }
+  Error unexpected(const Token& t, std::string_view expected) const {
+    if (t.empty())
+      return fail(ErrorCode::Truncated, scan_.here(),
+                  fmt::format("the file ends where {} was expected", expected));
+    return fail(ErrorCode::Malformed, t.location(), fmt::format("expected {}, found '{}'", expected, t.text));
+  }
+  Result<void> keyword(std::string_view word) {
+    const Token t = scan_.next();
+    if (t.text == word) return {};
+    return unexpected(t, fmt::format("'{}'", word));
+  }
+  Result<void> numbers(std::string_view what, bool finite) {
+    for (int k = 0; k < 3; ++k) {
+      const Token t = scan_.next();
+      if (t.empty()) return unexpected(t, what);
+      const std::optional<double> v = text::parse_double(t.text);
+      if (!v) return unexpected(t, what);
+      if (finite && !std::isfinite(static_cast<float>(*v)))
+        return fail(ErrorCode::NonFinite, t.location(),
+                    fmt::format("{} is {}, not a finite float", what, t.text));
+    }
+    return {};
+  }
+  Result<void> facet() {
+    if (Result<void> ok = keyword("normal"); !ok) return ok;
+    if (Result<void> ok = numbers("a normal component", false); !ok) return ok;
+    if (Result<void> ok = keyword("outer"); !ok) return ok;
+    if (Result<void> ok = keyword("loop"); !ok) return ok;
+    for (int corner = 0; corner < 3; ++corner) {
+      if (Result<void> ok = keyword("vertex"); !ok) return ok;
+      if (Result<void> ok = numbers("a corner coordinate", true); !ok) return ok;
+    }
+    if (Result<void> ok = keyword("endloop"); !ok) return ok;
+    return keyword("endfacet");
+  }
+
+  std::string_view bytes_;
+  Scanner scan_;
+  std::string_view source_;
+};
+
+} // namespace
+
+Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
+  if (bytes.empty()) return make_error(ErrorCode::Empty, "the file is empty", std::string(source));
+  const bool binary = is_binary(bytes);
+  Result<Checked> checked = binary ? check_binary(bytes, source, notes) : AsciiChecker(bytes, source).run();
+  if (!checked) return std::move(checked).error();
+  Result<Mesh> mesh = ply::detail::read_openmesh(std::string(checked->data),
+                                                 {.extension = "stl", .binary = binary}, source, notes);
+  if (mesh) mesh->units = checked->units;
+  return mesh;
+}
+
+Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
+  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (mesh.is_point_cloud())
+    return make_error(ErrorCode::InvalidArgument,
+                      "STL cannot hold a point cloud (the mesh has no triangles)");
+  Result<std::string> bytes =
+      ply::detail::write_openmesh(mesh, {.extension = "stl", .binary = options.binary}, "STL", notes);
+  if (!bytes) return bytes;
+  // The binary header and the solid line are free text: they name the writer and state the units.
+  const std::string units =
+      mesh.units == Units::Unknown ? "" : fmt::format(" units {}", to_string(mesh.units));
+  if (options.binary) {
+    std::string header = fmt::format("binary STL written by pdeface{}", units);
+    header.resize(kHeaderBytes, ' ');
+    bytes->replace(0, kHeaderBytes, header);
+  } else {
+    bytes->replace(0, bytes->find('\n'), fmt::format("solid pdeface{}", units));
+  }
+  return bytes;
+}
+
+} // namespace pdeface::stl
