@@ -1,5 +1,7 @@
 #include "openmesh_io.hpp"
 
+#include "pdeface/core/openmesh.hpp"
+
 #include <Eigen/Geometry>
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/exporter/BaseExporter.hh>
@@ -23,44 +25,6 @@ using OpenMesh::FaceHandle;
 using OpenMesh::HalfedgeHandle;
 using OpenMesh::VertexHandle;
 using StatusInfo = OpenMesh::Attributes::StatusInfo;
-
-// ---- OpenMesh's log -------------------------------------------------------------------------------
-
-// What OpenMesh logged on this thread since the last `take_log()`. OpenMesh hands each finished log line
-// to its targets on the thread that wrote it, so a thread-local buffer collects exactly our call's lines.
-thread_local std::string tl_log;
-constexpr std::size_t kMaxLog = 4096; // other OpenMesh users on this thread must not grow it without bound
-
-struct LogSink {
-  LogSink& operator<<(const std::string& line) {
-    if (tl_log.size() < kMaxLog) tl_log += line;
-    return *this;
-  }
-};
-
-// Reroutes OpenMesh's omerr/omlog/omout from the process's stderr/stdout into `LogSink`, once: library code
-// never prints. This affects every OpenMesh user in the process, which is the project's rule anyway.
-void silence_openmesh() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    static LogSink sink;
-    ::omerr().disconnect(std::cerr);
-    ::omlog().disconnect(std::clog);
-    ::omout().disconnect(std::cout);
-    ::omerr().connect(sink);
-    ::omlog().connect(sink);
-    ::omout().connect(sink);
-  });
-}
-
-std::string take_log() {
-  std::string log;
-  log.swap(tl_log);
-  while (!log.empty() && std::isspace(static_cast<unsigned char>(log.back())))
-    log.pop_back();
-  std::ranges::replace(log, '\n', ' ');
-  return log;
-}
 
 // OpenMesh's readers and writers are singletons with per-file state: one call at a time.
 std::mutex& openmesh_mutex() {
@@ -305,7 +269,7 @@ std::string describe(std::string_view what, const std::string& log) {
 
 Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::string_view source,
                            Notes* notes) {
-  silence_openmesh();
+  capture_openmesh_log();
   SoupImporter importer(bytes.size());
   OpenMesh::IO::Options options =
       OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexColor |
@@ -318,14 +282,14 @@ Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::stri
   std::string failure;
   {
     const std::scoped_lock lock(openmesh_mutex());
-    take_log();
+    (void)take_openmesh_log(); // drop what earlier OpenMesh users on this thread left
     try {
       ok = OpenMesh::IO::IOManager().read(in, std::string(how.extension), importer, options);
       importer.finish();
     } catch (const std::exception& e) {
       failure = e.what();
     }
-    log = take_log();
+    log = take_openmesh_log();
   }
   if (!failure.empty() || !ok)
     return make_error(ErrorCode::Malformed,
@@ -353,7 +317,7 @@ Result<std::string> write_openmesh(const Mesh& mesh, const OpenMeshWrite& how, s
   note_dropped(mesh.has_normals(), how.normals, "normals");
   note_dropped(mesh.has_colors(), how.colors, "vertex colours");
   note_dropped(mesh.has_texcoords(), how.texcoords, "texture coordinates");
-  silence_openmesh();
+  capture_openmesh_log();
   MeshExporter exporter(mesh, how);
   OpenMesh::IO::Options options;
   if (how.binary) options += OpenMesh::IO::Options::Binary;
@@ -369,14 +333,14 @@ Result<std::string> write_openmesh(const Mesh& mesh, const OpenMeshWrite& how, s
   std::string failure;
   {
     const std::scoped_lock lock(openmesh_mutex());
-    take_log();
+    (void)take_openmesh_log(); // drop what earlier OpenMesh users on this thread left
     try {
       constexpr std::streamsize kDigits = 9; // a float32 printed with 9 digits reads back exactly
       ok = OpenMesh::IO::IOManager().write(out, std::string(how.extension), exporter, options, kDigits);
     } catch (const std::exception& e) {
       failure = e.what();
     }
-    log = take_log();
+    log = take_openmesh_log();
   }
   if (!failure.empty() || !ok)
     return make_error(ErrorCode::Io,

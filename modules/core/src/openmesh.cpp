@@ -1,8 +1,54 @@
 #include "pdeface/core/openmesh.hpp"
 
+#include <OpenMesh/Core/System/omstream.hh>
+
+#include <algorithm>
+#include <cctype>
+#include <iostream>
+#include <mutex>
+
 namespace pdeface {
+namespace {
+
+// What OpenMesh logged on this thread since the last `take_openmesh_log()`. OpenMesh hands each finished
+// log line to its targets on the thread that wrote it, so a thread-local buffer collects exactly one
+// caller's lines.
+thread_local std::string tl_log;
+constexpr std::size_t kMaxLog = 4096; // a thread that never takes its log must not grow it without bound
+
+struct LogSink {
+  LogSink& operator<<(const std::string& line) {
+    if (tl_log.size() < kMaxLog) tl_log += line;
+    return *this;
+  }
+};
+
+} // namespace
+
+void capture_openmesh_log() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    static LogSink sink;
+    ::omerr().disconnect(std::cerr);
+    ::omlog().disconnect(std::clog);
+    ::omout().disconnect(std::cout);
+    ::omerr().connect(sink);
+    ::omlog().connect(sink);
+    ::omout().connect(sink);
+  });
+}
+
+std::string take_openmesh_log() {
+  std::string log;
+  log.swap(tl_log);
+  while (!log.empty() && std::isspace(static_cast<unsigned char>(log.back())))
+    log.pop_back();
+  std::ranges::replace(log, '\n', ' ');
+  return log;
+}
 
 HalfedgeConversion to_halfedge_mesh(const Mesh& mesh) {
+  capture_openmesh_log(); // add_face complains about every non-manifold triangle: we count them instead
   HalfedgeConversion out;
   HalfedgeMesh& om = out.mesh;
   om.reserve(mesh.positions.size(), 3 * mesh.triangles.size() / 2, mesh.triangles.size());
@@ -12,6 +58,7 @@ HalfedgeConversion to_halfedge_mesh(const Mesh& mesh) {
     const auto face = om.add_face(om.vertex_handle(t[0]), om.vertex_handle(t[1]), om.vertex_handle(t[2]));
     if (!face.is_valid()) ++out.rejected_triangles;
   }
+  (void)take_openmesh_log();
   return out;
 }
 

@@ -26,23 +26,12 @@ Topology topology(const Mesh& mesh) {
       seen[g.idx()] = 1;
   }
 
-  std::vector<char> reached(om.n_faces(), 0);
-  std::vector<OpenMesh::SmartFaceHandle> stack;
-  for (auto f : om.faces()) {
-    if (reached[f.idx()]) continue;
-    ++out.components;
-    reached[f.idx()] = 1;
-    stack.push_back(f);
-    while (!stack.empty()) {
-      const auto g = stack.back();
-      stack.pop_back();
-      for (auto n : g.faces())
-        if (!reached[n.idx()]) {
-          reached[n.idx()] = 1;
-          stack.push_back(n);
-        }
-    }
-  }
+  // Pieces joined by a vertex count as one, as in a scanner's view of "pieces" (and MANIFEST.md).
+  const std::vector<std::uint32_t> label = component_labels(mesh);
+  std::vector<char> has_triangle(mesh.vertex_count(), 0);
+  for (const Triangle& t : mesh.triangles)
+    has_triangle[label[t[0]]] = 1;
+  out.components = static_cast<std::size_t>(std::ranges::count(has_triangle, 1));
   return out;
 }
 

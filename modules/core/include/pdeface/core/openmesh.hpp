@@ -6,6 +6,8 @@
 
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 
+#include <string>
+
 namespace pdeface {
 
 struct OpenMeshTraits : OpenMesh::DefaultTraits {
@@ -24,5 +26,12 @@ struct HalfedgeConversion {
 [[nodiscard]] HalfedgeConversion to_halfedge_mesh(const Mesh& mesh);
 //! Positions and triangles of a half-edge mesh (deleted elements skipped, indices compacted).
 [[nodiscard]] Mesh from_halfedge_mesh(const HalfedgeMesh& mesh);
+
+//! Routes OpenMesh's log streams (`omerr`, `omlog`, `omout`), which print to the terminal, into a
+//! per-thread buffer instead: library code never prints. Process-wide and idempotent; every function
+//! here that calls OpenMesh does it first.
+void capture_openmesh_log();
+//! What OpenMesh logged on this thread since the last call, as one line (for error messages).
+[[nodiscard]] std::string take_openmesh_log();
 
 } // namespace pdeface
