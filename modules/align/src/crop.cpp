@@ -9,9 +9,11 @@
 namespace pdeface::align {
 
 Result<Mesh> crop_face(const Mesh& canonical, const Landmarks& landmarks, const CropOptions& options) {
-  for (Landmark l : {Landmark::FaceTop, Landmark::FaceBottom, Landmark::EyeOuterLeft, Landmark::EyeOuterRight})
+  for (Landmark l :
+       {Landmark::FaceTop, Landmark::FaceBottom, Landmark::EyeOuterLeft, Landmark::EyeOuterRight})
     if (!landmarks.has(l))
-      return make_error(ErrorCode::InvalidArgument, fmt::format("cropping needs the {} landmark", name(l)), canonical.name);
+      return make_error(ErrorCode::InvalidArgument, fmt::format("cropping needs the {} landmark", name(l)),
+                        canonical.name);
   const double top = landmarks[Landmark::FaceTop]->y();
   const double bottom = landmarks[Landmark::FaceBottom]->y();
   const double half_width = std::max(std::abs(landmarks[Landmark::EyeOuterLeft]->x()),
@@ -39,11 +41,13 @@ Result<Mesh> crop_face(const Mesh& canonical, const Landmarks& landmarks, const 
       if (inside(canonical.positions[v])) keep(v);
   } else {
     for (const Triangle& t : canonical.triangles)
-      if (inside(canonical.positions[t[0]]) && inside(canonical.positions[t[1]]) && inside(canonical.positions[t[2]]))
+      if (inside(canonical.positions[t[0]]) && inside(canonical.positions[t[1]]) &&
+          inside(canonical.positions[t[2]]))
         cut.triangles.push_back({keep(t[0]), keep(t[1]), keep(t[2])});
   }
   if (cut.vertex_count() == 0)
-    return make_error(ErrorCode::NoFace, "no face found: nothing of the scan lies inside the face region", canonical.name);
+    return make_error(ErrorCode::NoFace, "no face found: nothing of the scan lies inside the face region",
+                      canonical.name);
   return drop_small_components(cut, options.min_fragment);
 }
 

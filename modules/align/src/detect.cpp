@@ -257,7 +257,37 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   place(Landmark::NoseTip, tip->x(), tip->y());
   const double x0 = tip->x(), y0 = tip->y();
   const detail::DepthMap cups = map.smoothed(2.5);
+  const detail::DepthMap soft = map.smoothed(1.0); // point clouds splat unevenly: their raw map is rough
   std::vector<double> eye_y, mouth_y;
+  // The mouth line where it crosses the midline. Down the midline from the nose the profile rises onto
+  // the upper lip, dips into the mouth, rises onto the lower lip, dips under it and rises onto the chin:
+  // the mouth is the lowest point between the first two bumps (the lips). Failing that, the deepest
+  // groove (relief) between the nose and the chin.
+  const detail::DepthMap profile_map = map.smoothed(1.5);
+  std::vector<std::pair<double, double>> midline; // (y, z), downwards
+  for (double y = y0 - 6.0; y >= y0 - 60.0; y -= 1.0)
+    if (const auto z = profile_map.at(x0, y)) midline.emplace_back(y, *z);
+  std::vector<std::size_t> bumps;
+  for (std::size_t i = 2; i + 2 < midline.size() && bumps.size() < 2; ++i) {
+    const double z = midline[i].second;
+    if (z >= midline[i - 1].second && z >= midline[i + 1].second && z > midline[i - 2].second &&
+        z > midline[i + 2].second)
+      bumps.push_back(i);
+  }
+  double y_slit = y0 - 30.0;
+  if (bumps.size() == 2) {
+    const auto lowest = std::min_element(midline.begin() + static_cast<std::ptrdiff_t>(bumps[0]),
+                                         midline.begin() + static_cast<std::ptrdiff_t>(bumps[1]),
+                                         [](const auto& a, const auto& b) { return a.second < b.second; });
+    y_slit = lowest->first;
+  } else {
+    double deepest = 0.0;
+    for (double y = y0 - 18.0; y >= y0 - 45.0; y -= 1.0)
+      if (const auto rel = soft.relief(x0, y, 4.0); rel && *rel < deepest) {
+        deepest = *rel;
+        y_slit = y;
+      }
+  }
   for (double side : {1.0, -1.0}) {
     const bool left = side > 0;
     // Eye corners are cups (concave in every direction) on a lightly smoothed map: the inner one between
@@ -269,7 +299,7 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
                                          inner->y() - 10.0, inner->y() + 8.0))
         place(left ? Landmark::EyeOuterLeft : Landmark::EyeOuterRight, outer->x(), outer->y());
     }
-    if (const auto mouth = hollow_end(map, x0, x0 + side * 40.0, y0 - 55.0, y0 - 18.0, 5.0)) {
+    if (const auto mouth = hollow_end(soft, x0, x0 + side * 40.0, y_slit - 8.0, y_slit + 6.0, 5.0)) {
       place(left ? Landmark::MouthLeft : Landmark::MouthRight, mouth->x(), mouth->y());
       mouth_y.push_back(mouth->y());
     }

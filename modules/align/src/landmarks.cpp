@@ -233,8 +233,9 @@ Result<Landmarks> read_landmarks(std::string_view bytes, std::string_view source
   Result<json> parsed = parse_json(bytes, source);
   if (!parsed) return std::move(parsed).error();
   const json& j = *parsed;
-  const bool menpo = j.is_object() && (j.contains("groups") || (j.contains("landmarks") && j["landmarks"].is_object() &&
-                                                                j["landmarks"].contains("points")));
+  const bool menpo =
+      j.is_object() && (j.contains("groups") || (j.contains("landmarks") && j["landmarks"].is_object() &&
+                                                 j["landmarks"].contains("points")));
   return menpo ? from_ljson(j, source) : from_ours(j, source);
 }
 
