@@ -46,20 +46,33 @@ class Converter {
 public:
   Converter(const ::draco::PointCloud& pc, std::string_view source) : pc_(pc), source_(source) {}
 
-  // Calls put(point, values) with N components per point (missing components are 0).
+  // Every attribute's point map, not only those we read: glTF refers to any attribute by unique id, and
+  // tinygltf reads them unchecked.
+  [[nodiscard]] std::optional<Error> check_point_maps() const {
+    const std::size_t points = pc_.num_points();
+    for (int i = 0; i < pc_.num_attributes(); ++i) {
+      const ::draco::PointAttribute& a = *pc_.attribute(i);
+      const std::string_view what = attribute_name(a.attribute_type());
+      if (!a.is_mapping_identity() && a.indices_map_size() < points)
+        return error(ErrorCode::Malformed, fmt::format("the {} point map has {} entries for {} points", what,
+                                                       a.indices_map_size(), points));
+      for (std::uint32_t p = 0; p < points; ++p)
+        if (const ::draco::AttributeValueIndex index = a.mapped_index(::draco::PointIndex(p));
+            index.value() >= a.size())
+          return error(ErrorCode::IndexOutOfRange,
+                       fmt::format("point {} refers to {} value {} of {}", p, what, index.value(), a.size()));
+    }
+    return std::nullopt;
+  }
+
+  // Calls put(point, values) with N components per point (missing components are 0); the point maps
+  // must have been checked.
   template <int N, class Put>
   std::optional<Error> values(const ::draco::PointAttribute& attribute, Put put) const {
-    const std::size_t points = pc_.num_points();
     const std::string_view what = attribute_name(attribute.attribute_type());
-    if (!attribute.is_mapping_identity() && attribute.indices_map_size() < points)
-      return error(ErrorCode::Malformed, fmt::format("the {} point map has {} entries for {} points", what,
-                                                     attribute.indices_map_size(), points));
     std::array<float, N> v{};
-    for (std::uint32_t p = 0; p < points; ++p) {
+    for (std::uint32_t p = 0; p < pc_.num_points(); ++p) {
       const ::draco::AttributeValueIndex index = attribute.mapped_index(::draco::PointIndex(p));
-      if (index.value() >= attribute.size())
-        return error(ErrorCode::IndexOutOfRange, fmt::format("point {} refers to {} value {} of {}", p, what,
-                                                             index.value(), attribute.size()));
       if (!attribute.ConvertValue<float>(index, static_cast<std::int8_t>(N), v.data()))
         return error(ErrorCode::Malformed,
                      fmt::format("{} value {} cannot be read as numbers", what, index.value()));
@@ -169,6 +182,7 @@ Result<detail::Decoded> convert(const ::draco::PointCloud& pc, const ::draco::Me
   detail::Decoded out;
   Mesh& mesh = out.mesh;
   if (pc.num_points() == 0) return c.error(ErrorCode::Empty, "the Draco data holds no points");
+  if (auto e = c.check_point_maps()) return std::move(*e);
   if (auto e = read_positions(c, pc.GetNamedAttribute(GeometryAttribute::POSITION), mesh))
     return std::move(*e);
   if (auto e = read_optional(c, pc, mesh, notes)) return std::move(*e);
@@ -241,8 +255,11 @@ Result<Decoded> decode(std::string_view bytes, std::string_view source, std::opt
 } // namespace detail
 
 Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
-  Result<detail::Decoded> decoded = detail::decode(bytes, source, 0, notes);
+  Notes mine;
+  Result<detail::Decoded> decoded = detail::decode(bytes, source, 0, notes ? &mine : nullptr);
   if (!decoded) return std::move(decoded).error();
+  for (const std::string& note : mine)
+    notes->push_back(fmt::format("{}: {}", source, note));
   return std::move(decoded->mesh);
 }
 

@@ -13,8 +13,9 @@
 
 namespace {
 
-// A 2x2-quad square (9 points, 8 triangles) with unquantised float positions.
-std::unique_ptr<draco::Mesh> square(float nan_at_point) {
+// A 2x2-quad square (9 points, 8 triangles) with unquantised float positions; optionally a generic
+// attribute of 16 components (unique id 1), like a matrix per vertex.
+std::unique_ptr<draco::Mesh> square(int nan_at_point, bool wide = false) {
   auto mesh = std::make_unique<draco::Mesh>();
   mesh->set_num_points(9);
   draco::GeometryAttribute ga;
@@ -24,6 +25,14 @@ std::unique_ptr<draco::Mesh> square(float nan_at_point) {
     std::array<float, 3> p{float(i % 3), float(i / 3), 0.0f};
     if (i == nan_at_point) p[2] = std::numeric_limits<float>::quiet_NaN();
     mesh->attribute(id)->SetAttributeValue(draco::AttributeValueIndex(i), p.data());
+  }
+  if (wide) {
+    draco::GeometryAttribute generic;
+    generic.Init(draco::GeometryAttribute::GENERIC, nullptr, 16, draco::DT_FLOAT32, false, 64, 0);
+    const int g = mesh->AddAttribute(generic, true, 9);
+    const std::array<float, 16> m{};
+    for (int i = 0; i < 9; ++i)
+      mesh->attribute(g)->SetAttributeValue(draco::AttributeValueIndex(i), m.data());
   }
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 2; ++x) {
@@ -47,7 +56,8 @@ bool save(const std::string& path, const draco::Mesh& mesh) {
 
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : ".";
-  if (!save(dir + "/nan_position.drc", *square(4)) || !save(dir + "/square.drc", *square(-1))) {
+  if (!save(dir + "/nan_position.drc", *square(4)) || !save(dir + "/square.drc", *square(-1)) ||
+      !save(dir + "/square_generic16.drc", *square(-1, true))) {
     std::cerr << "encoding failed\n";
     return 1;
   }

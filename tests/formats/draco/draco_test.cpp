@@ -354,6 +354,12 @@ TEST(DracoBadInput, HandMadeFixtures) {
   EXPECT_EQ(square->vertex_count(), 9u);
   EXPECT_EQ(square->triangle_count(), 8u);
 
+  Notes notes;
+  Result<Mesh> generic = draco::read(fixture("square_generic16.drc"), "generic.drc", &notes);
+  ASSERT_TRUE(generic.ok()) << generic.error().to_string();
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0], "generic.drc: Draco attribute 1 (generic) dropped");
+
   Result<Mesh> nan = draco::read(fixture("nan_position.drc"), "bad.drc");
   expect_error(nan, ErrorCode::NonFinite, std::nullopt);
   EXPECT_NE(nan.error().message.find("point 4"), std::string::npos) << nan.error().message;
