@@ -1,7 +1,6 @@
 #include "bitstream.hpp"
 #include "pdeface/draco/detail.hpp"
 #include "pdeface/draco/draco.hpp"
-#include "status.hpp"
 
 #include <draco/compression/decode.h>
 #include <draco/mesh/mesh.h>
@@ -10,6 +9,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -208,6 +208,15 @@ Result<detail::Decoded> convert(const ::draco::PointCloud& pc, const ::draco::Me
 
 namespace detail {
 
+std::string message_text(std::string message) {
+  constexpr std::size_t kMax = 300;
+  if (message.size() > kMax) message = message.substr(0, kMax) + "...";
+  while (!message.empty() && (message.back() == '\n' || message.back() == '.' || message.back() == ' '))
+    message.pop_back();
+  if (!message.empty()) message[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(message[0])));
+  return message;
+}
+
 std::optional<Units> units_from_string(std::string_view text) {
   for (Units units : {Units::Millimetres, Units::Centimetres, Units::Metres, Units::Inches})
     if (text == to_string(units)) return units;
@@ -232,7 +241,8 @@ Result<Decoded> decode(std::string_view bytes, std::string_view source, std::opt
     const std::size_t stop = inside ? head - start : 0;
     const bool at_end = inside && stop == bytes.size();
     return make_error(at_end ? ErrorCode::Truncated : ErrorCode::Malformed,
-                      fmt::format("the Draco decoder failed: {} (the data is {})", lowercase_message(status),
+                      fmt::format("the Draco decoder failed: {} (the data is {})",
+                                  detail::message_text(status.error_msg_string()),
                                   at_end ? "truncated" : "corrupt or truncated"),
                       std::string(source), inside ? origin.at(stop) : Location{});
   };

@@ -1,6 +1,5 @@
 #include "pdeface/draco/detail.hpp"
 #include "pdeface/draco/draco.hpp"
-#include "status.hpp"
 
 #include <draco/compression/encode.h>
 #include <draco/mesh/mesh.h>
@@ -175,7 +174,8 @@ Result<Encoded> encode(const Mesh& mesh, const WriteOptions& options, Notes* not
     const ::draco::Status status = mesh.is_point_cloud() ? encoder.EncodePointCloudToBuffer(*dm, &buffer)
                                                          : encoder.EncodeMeshToBuffer(*dm, &buffer);
     if (!status.ok())
-      return make_error(ErrorCode::Malformed, "Draco cannot encode the mesh: " + lowercase_message(status),
+      return make_error(ErrorCode::Malformed,
+                        "Draco cannot encode the mesh: " + detail::message_text(status.error_msg_string()),
                         mesh.name);
     out.bytes.assign(buffer.data(), buffer.size());
   } catch (const std::bad_alloc&) {

@@ -12,7 +12,6 @@
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
-#include <cctype>
 #include <limits>
 #include <numeric>
 #include <set>
@@ -43,17 +42,6 @@ bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, in
   return true;
 }
 
-// "Invalid glTF binary.\n" -> "invalid glTF binary"; long messages (tinygltf quotes whole data URIs)
-// are cut.
-std::string tidy(std::string message) {
-  constexpr std::size_t kMax = 300;
-  if (message.size() > kMax) message = message.substr(0, kMax) + "...";
-  while (!message.empty() && (message.back() == '\n' || message.back() == '.' || message.back() == ' '))
-    message.pop_back();
-  if (!message.empty()) message[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(message[0])));
-  return message;
-}
-
 Result<tinygltf::Model> load(const Container& c, std::string_view source, Notes* notes) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skip_image, nullptr);
@@ -64,8 +52,11 @@ Result<tinygltf::Model> load(const Container& c, std::string_view source, Notes*
                                                       static_cast<unsigned>(c.bytes.size()))
                         : loader.LoadASCIIFromString(&model, &err, &warn, c.json.data(),
                                                      static_cast<unsigned>(c.json.size()), "");
-  if (!ok) return make_error(ErrorCode::Malformed, "tinygltf: " + tidy(err), std::string(source));
-  if (!warn.empty() && notes) notes->push_back(fmt::format("{}: tinygltf: {}", source, tidy(warn)));
+  if (!ok)
+    return make_error(ErrorCode::Malformed, "tinygltf: " + draco::detail::message_text(err),
+                      std::string(source));
+  if (!warn.empty() && notes)
+    notes->push_back(fmt::format("{}: tinygltf: {}", source, draco::detail::message_text(warn)));
   return model;
 }
 

@@ -8,7 +8,6 @@
 #include <tiny_gltf.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <sstream>
 
@@ -19,7 +18,7 @@ constexpr int kNoView = -1;
 constexpr std::size_t kMaxShortVertices = 65535; // u16 indices below 65535, the primitive restart value
 
 // The normals to write: the mesh's own, or area-weighted ones, each of unit length as the validator requires.
-// A vertex on no triangle has no normal: it gets +z.
+// A vertex on no triangle has no area-weighted normal: it gets +z, as does a zero normal of the mesh.
 std::vector<Vec3f> unit_normals(const Mesh& mesh, Notes* notes) {
   std::vector<Vec3f> normals = mesh.has_normals() ? mesh.normals : vertex_normals(mesh);
   std::size_t replaced = 0;
@@ -33,9 +32,9 @@ std::vector<Vec3f> unit_normals(const Mesh& mesh, Notes* notes) {
     }
   }
   if (replaced > 0 && notes)
-    notes->push_back(fmt::format("{} vertices without a normal (on no triangle) get +z: glTF normals must be "
-                                 "unit vectors",
-                                 replaced));
+    notes->push_back(fmt::format("{} {} without a usable normal (zero, or on no triangle) given +z: glTF "
+                                 "normals must be unit vectors",
+                                 replaced, replaced == 1 ? "vertex" : "vertices"));
   return normals;
 }
 
@@ -111,7 +110,7 @@ public:
   }
 
   // Mesh, node and scene around the primitive; units in asset.extras.
-  std::string finish(tinygltf::Primitive primitive, const Mesh& mesh, bool binary) {
+  Result<std::string> finish(tinygltf::Primitive primitive, const Mesh& mesh, bool binary) {
     tinygltf::Mesh m;
     m.name = mesh.name;
     m.primitives.push_back(std::move(primitive));
@@ -127,7 +126,8 @@ public:
       model_.asset.extras = tinygltf::Value(tinygltf::Value::Object{
           {std::string(kUnitsKey), tinygltf::Value(std::string(to_string(mesh.units)))}});
     std::ostringstream out;
-    tinygltf::TinyGLTF().WriteGltfSceneToStream(&model_, out, false, binary);
+    if (!tinygltf::TinyGLTF().WriteGltfSceneToStream(&model_, out, false, binary) || !out)
+      return make_error(ErrorCode::Io, "tinygltf could not serialise the model", mesh.name);
     return std::move(out).str();
   }
 

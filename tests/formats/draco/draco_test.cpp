@@ -4,6 +4,7 @@
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/draco/draco.hpp"
 #include "pdeface_test.hpp"
+#include "quantisation.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,6 +15,10 @@
 #include <random>
 
 namespace pdeface {
+
+using test::half_step;
+using test::max_vertex_error;
+using test::sorted_axis_error;
 
 void PrintTo(ErrorCode code, std::ostream* os) { *os << to_string(code); }
 
@@ -27,41 +32,6 @@ std::string fixture(std::string_view name) {
 
 Mesh small_face() {
   return sample_face({.spacing_mm = 8.0}); // ~400 vertices: small enough to truncate at every length
-}
-
-// Half a quantisation step of Draco's position grid (one cube over the largest bounding-box side), plus
-// float32 rounding of the coordinates.
-double half_step(const Mesh& mesh, int bits) {
-  const Box box = bounding_box(mesh);
-  const double ulp =
-      box.max.cwiseAbs().cwiseMax(box.min.cwiseAbs()).maxCoeff() * std::numeric_limits<float>::epsilon();
-  return box.size().maxCoeff() / ((1 << bits) - 1) / 2 + 2 * ulp;
-}
-
-// The largest per-axis difference between the sorted coordinates of two point sets of the same size. A
-// permutation that moves no point further than d along an axis moves no sorted coordinate further than d,
-// so this bounds Draco's error without knowing how it reordered the vertices.
-double sorted_axis_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double worst = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    std::vector<double> x, y;
-    for (const Vec3& p : a)
-      x.push_back(p[axis]);
-    for (const Vec3& p : b)
-      y.push_back(p[axis]);
-    std::ranges::sort(x);
-    std::ranges::sort(y);
-    for (std::size_t i = 0; i < x.size(); ++i)
-      worst = std::max(worst, std::abs(x[i] - y[i]));
-  }
-  return worst;
-}
-
-double max_vertex_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double worst = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    worst = std::max(worst, (a[i] - b[i]).cwiseAbs().maxCoeff());
-  return worst;
 }
 
 // The vertex block of a binary little-endian PLY whose vertices are three floats (the facefuns scans).

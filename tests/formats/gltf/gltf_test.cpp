@@ -1,5 +1,6 @@
 // The glTF reader and writer: the real scan, scenes, transforms, modes and encodings, round trips plain
 // and with Draco, and every class of bad input with its code and location.
+#include "../draco/quantisation.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/gltf/gltf.hpp"
@@ -16,6 +17,9 @@
 #include <random>
 
 namespace pdeface {
+
+using test::half_step;
+using test::sorted_axis_error;
 
 void PrintTo(ErrorCode code, std::ostream* os) { *os << to_string(code); }
 
@@ -120,30 +124,6 @@ void expect_message(const Result<Mesh>& result, std::string_view text) {
 
 bool has_note(const Notes& notes, std::string_view text) {
   return std::ranges::any_of(notes, [&](const std::string& n) { return n.find(text) != std::string::npos; });
-}
-
-double half_step(const Mesh& mesh, int bits) {
-  const Box box = bounding_box(mesh);
-  const double ulp =
-      box.max.cwiseAbs().cwiseMax(box.min.cwiseAbs()).maxCoeff() * std::numeric_limits<float>::epsilon();
-  return box.size().maxCoeff() / ((1 << bits) - 1) / 2 + 2 * ulp;
-}
-
-// See draco_test.cpp: bounds the per-axis error of a reordering codec.
-double sorted_axis_error(const std::vector<Vec3>& a, const std::vector<Vec3>& b) {
-  double worst = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    std::vector<double> x, y;
-    for (const Vec3& p : a)
-      x.push_back(p[axis]);
-    for (const Vec3& p : b)
-      y.push_back(p[axis]);
-    std::ranges::sort(x);
-    std::ranges::sort(y);
-    for (std::size_t i = 0; i < x.size(); ++i)
-      worst = std::max(worst, std::abs(x[i] - y[i]));
-  }
-  return worst;
 }
 
 // ---- reading -------------------------------------------------------------------------------------------
@@ -399,7 +379,7 @@ TEST(GltfWrite, NormalsAreComputedAndUnit) {
   for (const Vec3f& n : back->normals)
     ASSERT_NEAR(n.norm(), 1.0f, 1e-6f);
   EXPECT_EQ(back->normals.back(), Vec3f(0, 0, 1));
-  EXPECT_TRUE(has_note(notes, "1 vertices without a normal"));
+  EXPECT_TRUE(has_note(notes, "1 vertex without a usable normal"));
   const std::vector<Vec3f> expected = vertex_normals(face);
   EXPECT_TRUE(back->normals[10].isApprox(expected[10], 1e-6f));
 }

@@ -47,6 +47,10 @@ struct Decoded {
 [[nodiscard]] Result<Decoded> decode(std::string_view bytes, std::string_view source,
                                      std::optional<std::uint64_t> base, Notes* notes);
 
+//! A library's message in our error style: "Failed to decode geometry data.\n" becomes "failed to decode
+//! geometry data"; messages longer than 300 characters are cut (tinygltf quotes whole data URIs).
+[[nodiscard]] std::string message_text(std::string message);
+
 //! The units a metadata or `extras` string names ("mm", "cm", "m", "in"), as `to_string(Units)` writes
 //! them.
 [[nodiscard]] std::optional<Units> units_from_string(std::string_view text);
