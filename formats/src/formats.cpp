@@ -33,8 +33,8 @@ constexpr std::array<FormatInfo, 8> kFormats{{
     {Format::Ply, "PLY", kPlyExt, true, true, true, true, true, false},
     {Format::Off, "OFF", kOffExt, true, true, false, false, false, false},
     {Format::Stl, "STL", kStlExt, true, false, false, false, false, false},
-    {Format::Gltf, "glTF", kGltfExt, true, true, true, true, false, false},
-    {Format::Glb, "GLB", kGlbExt, true, true, true, true, false, false},
+    {Format::Gltf, "glTF", kGltfExt, true, true, true, true, true, false},
+    {Format::Glb, "GLB", kGlbExt, true, true, true, true, true, false},
     {Format::Draco, "Draco", kDracoExt, true, true, true, true, true, true},
 }};
 

@@ -1,6 +1,11 @@
 #pragma once
 //! \file
-//! glTF 2.0 (`.gltf` with embedded or data-URI buffers, and `.glb`) reader and GLB writer.
+//! glTF 2.0 (`.gltf` with data-URI buffers, and `.glb`) reader and writer, through tinygltf.
+//!
+//! Reading untrusted bytes is safe and touches no file: external buffers are refused, images are never
+//! decoded, and every index, offset and count that tinygltf takes on trust is checked first (see
+//! third_party_notes/tinygltf.md). Units are known only from our marker `asset.extras.units` ("mm", ...):
+//! glTF says metres, but scanners write millimetres into it.
 
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
@@ -12,8 +17,16 @@
 
 namespace pdeface::gltf {
 
-//! Merges every triangle (or point) primitive of the default scene into one mesh, node transforms
-//! applied; `KHR_draco_mesh_compression` primitives are decoded through Draco.
+//! Merges every triangle (or point) primitive of the default scene (else scene 0, else every root node)
+//! into one mesh, node transforms applied (normals by the inverse transpose; mirroring transforms flip the
+//! winding). Modes TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN and POINTS; lines are skipped with a note.
+//! Attributes POSITION, NORMAL, COLOR_0 (RGB gets alpha 1) and TEXCOORD_0, float or normalised integers
+//! (`KHR_mesh_quantization`); others are dropped with a note, as is an attribute only some primitives have.
+//! `KHR_draco_mesh_compression` primitives are decoded through Draco.
+//! Errors: `Empty`, `BadMagic`, `UnsupportedVersion`, `Truncated` and `Malformed` (GLB: at the byte of the
+//! header or chunk; JSON syntax: at the line and column of a `.gltf`, the byte of a `.glb`),
+//! `UnsupportedFormat` (external buffers, sparse accessors, required extensions we cannot honour),
+//! `IndexOutOfRange` and `NonFinite` (at the byte of the value when it lies in the GLB's BIN chunk).
 [[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr);
 
 struct WriteOptions {
@@ -21,8 +34,14 @@ struct WriteOptions {
   std::optional<draco::WriteOptions> draco; //!< set: compress the primitive with KHR_draco_mesh_compression
 };
 
-//! A GLB (or .gltf) holding one mesh with positions, normals (computed when the mesh has none) and optional vertex
-//! colours, which the Khronos glTF validator accepts without errors.
+//! A GLB (or .gltf) that the Khronos glTF validator accepts without errors: one mesh, one primitive (mode
+//! TRIANGLES, or POINTS for a point cloud), one node, one scene. POSITION as float32 (with min and max; a
+//! note tells how far doubles were rounded); NORMAL of unit length (computed with `vertex_normals` for a
+//! mesh without normals; +z for vertices on no triangle); COLOR_0 as normalised unsigned bytes when every
+//! channel is a multiple of 1/255, else as floats (RGBA); TEXCOORD_0; indices u16 below 65535 vertices,
+//! else u32. With `options.draco`, triangle meshes are compressed with `KHR_draco_mesh_compression`
+//! (point clouds, which the extension cannot hold, are written uncompressed with a note).
+//! Errors: `InvalidArgument` (Draco options), `Empty`, those of `validate` and of the Draco encoder.
 [[nodiscard]] Result<std::string> write(const Mesh& mesh, const WriteOptions& options = {},
                                         Notes* notes = nullptr);
 
