@@ -1,5 +1,9 @@
 // pdeface: the command line. It maps arguments onto library calls and prints their outcome; no logic here.
 
+#include "pdeface/align/crop.hpp"
+#include "pdeface/align/detect.hpp"
+#include "pdeface/align/preview.hpp"
+#include "pdeface/core/file.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/core/summary.hpp"
 #include "pdeface/formats/formats.hpp"
@@ -21,9 +25,11 @@ namespace {
 constexpr int kDataError = 1;  // the input or output could not be read, converted or written
 constexpr int kUsageError = 2; // the command line itself is wrong
 
-void print_notes(const Notes& notes) {
+// Prints the notes collected so far and forgets them, so that the next step's are printed once.
+void print_notes(Notes& notes) {
   for (const std::string& note : notes)
     fmt::print(stderr, "pdeface: note: {}\n", note);
+  notes.clear();
 }
 
 int fail(const Error& error) {
@@ -166,9 +172,96 @@ int run_sample(SampleRequest request) {
   return 0;
 }
 
+// ---- align --------------------------------------------------------------------------------------------
+
+struct AlignRequest {
+  fs::path in;
+  fs::path out;
+  fs::path landmarks;     // given landmarks instead of detection (ours or menpo LJSON)
+  fs::path landmarks_out; // what was found (or given), with the frame
+  fs::path preview;       // SVG
+  bool crop = false;
+  formats::WriteOptions write;
+};
+
+int run_align(const AlignRequest& request) {
+  Notes notes;
+  Result<formats::LoadedMesh> scan = formats::read_mesh(request.in, {}, &notes);
+  print_notes(notes);
+  if (!scan) return fail(scan.error());
+  const Mesh& mesh = scan->mesh;
+
+  align::Landmarks landmarks;
+  align::FaceFrame frame;
+  std::optional<double> confidence;
+  if (!request.landmarks.empty()) {
+    Result<std::string> bytes = read_file(request.landmarks);
+    if (!bytes) return fail(bytes.error());
+    Result<align::Landmarks> given = align::read_landmarks(*bytes, request.landmarks.string());
+    if (!given) return fail(given.error());
+    landmarks = *given;
+    if (landmarks.units == Units::Unknown) landmarks.units = align::detect_units(mesh);
+    Result<align::FaceFrame> fitted = align::frame_from_landmarks(landmarks, landmarks.units);
+    if (!fitted) {
+      Error e = std::move(fitted).error();
+      e.source = request.landmarks.string();
+      return fail(e);
+    }
+    frame = *fitted;
+    landmarks = align::complete_landmarks(mesh, landmarks, frame); // e.g. the face's top and bottom
+  } else {
+    Result<align::Detection> found = align::detect_landmarks(mesh);
+    if (!found) {
+      Error e = std::move(found).error();
+      e.source = request.in.string();
+      return fail(e);
+    }
+    landmarks = found->landmarks;
+    frame = found->frame;
+    confidence = found->confidence;
+  }
+
+  Mesh aligned = align::to_canonical(mesh, frame);
+  if (request.crop) {
+    Result<Mesh> cropped = align::crop_face(aligned, align::to_canonical(landmarks, frame));
+    if (!cropped) {
+      Error e = std::move(cropped).error();
+      e.source = request.in.string();
+      return fail(e);
+    }
+    aligned = std::move(cropped).value();
+  }
+  Result<std::size_t> written = formats::write_mesh(aligned, request.out, request.write, &notes);
+  print_notes(notes);
+  if (!written) return fail(written.error());
+  if (!request.landmarks_out.empty())
+    if (Result<void> ok = write_file_atomic(request.landmarks_out,
+                                            align::write_alignment_json(landmarks, frame, confidence));
+        !ok)
+      return fail(ok.error());
+  if (!request.preview.empty()) {
+    const std::string title =
+        confidence ? fmt::format("{}: found, confidence {:.2f}", request.in.filename().string(), *confidence)
+                   : fmt::format("{}: landmarks from {}", request.in.filename().string(),
+                                 request.landmarks.filename().string());
+    if (Result<void> ok =
+            write_file_atomic(request.preview, align::preview_svg(mesh, frame, landmarks, {.title = title}));
+        !ok)
+      return fail(ok.error());
+  }
+  const Vec3 tip = *landmarks[align::Landmark::NoseTip];
+  fmt::print("{}: {} (scan in {}), nose tip at ({:.4g}, {:.4g}, {:.4g})\n", request.in.string(),
+             confidence ? fmt::format("face found, confidence {:.2f}", *confidence)
+                        : std::string("landmarks given"),
+             to_string(frame.scan_units), tip.x(), tip.y(), tip.z());
+  fmt::print("{}: canonical frame, mm, {} vertices, {} triangles{}\n", request.out.string(),
+             aligned.vertex_count(), aligned.triangle_count(), request.crop ? ", cropped to the face" : "");
+  return 0;
+}
+
 void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
-  cmd->add_option("--draco-bits", write.draco_bits, "Draco position quantisation bits (1..30)")
-      ->check(CLI::Range(1, 30))
+  cmd->add_option("--draco-bits", write.draco_bits, "Draco position quantisation bits (1..24)")
+      ->check(CLI::Range(1, 24))
       ->capture_default_str();
   cmd->add_option("--draco-level", write.draco_level, "Draco compression level (0..10; 0 keeps vertex order)")
       ->check(CLI::Range(0, 10))
@@ -219,6 +312,28 @@ int main(int argc, char** argv) {
   sample_cmd->add_flag("--no-colors", sample.no_colors, "Do not add vertex colours");
   add_write_options(sample_cmd, sample.write);
 
+  AlignRequest align_request;
+  CLI::App* align_cmd = app.add_subcommand(
+      "align",
+      "Move a scan into the canonical face frame (nose tip at the origin, x to the face's left, y up, "
+      "z to the viewer, mm), from detected or given landmarks");
+  align_cmd->add_option("input", align_request.in, "Scan to align (any readable format)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  align_cmd->add_option("-o,--output", align_request.out, "Aligned mesh to write (any writable format)")
+      ->required();
+  align_cmd
+      ->add_option("--landmarks", align_request.landmarks,
+                   "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
+      ->check(CLI::ExistingFile);
+  align_cmd->add_option("--landmarks-out", align_request.landmarks_out,
+                        "Write the landmarks (scan frame) and the transform as JSON");
+  align_cmd->add_option("--preview", align_request.preview,
+                        "Write an SVG of the frontal view with the landmarks and the symmetry line");
+  align_cmd->add_flag("--crop", align_request.crop,
+                      "Keep only the face region (between the face's top and bottom, cheek to cheek)");
+  add_write_options(align_cmd, align_request.write);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -227,5 +342,6 @@ int main(int argc, char** argv) {
   if (info_cmd->parsed()) return run_info(info);
   if (convert_cmd->parsed()) return run_convert(convert);
   if (sample_cmd->parsed()) return run_sample(sample);
+  if (align_cmd->parsed()) return run_align(align_request);
   return 0;
 }

@@ -165,7 +165,11 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
   const Mesh fitted = fit_to(fi, mesh, notes);
   const draco::WriteOptions draco_options{.position_bits = options.draco_bits, .level = options.draco_level};
   if (*format == Format::Draco || options.draco_in_gltf) {
-    if (Result<void> ok = draco::check(draco_options); !ok) return std::move(ok).error();
+    if (Result<void> ok = draco::check(draco_options); !ok) {
+      Error e = std::move(ok).error();
+      e.source = source;
+      return e;
+    }
   }
 
   Result<std::string> bytes = [&]() -> Result<std::string> {

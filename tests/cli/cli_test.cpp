@@ -71,7 +71,7 @@ TEST_F(Cli, UsageErrorsAreOneLineAndExitTwo) {
         {"frobnicate"},
         {"info"},
         {"info", path("absent.ply")},
-        {"convert", "--draco-bits", "31", path("a.ply"), path("b.drc")}}) {
+        {"convert", "--draco-bits", "25", path("a.ply"), path("b.drc")}}) {
     Outcome r = run(args);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_EQ(lines(r.err), 1U) << r.err;

@@ -168,7 +168,7 @@ void note_unused(const ::draco::PointCloud& pc, Notes* notes) {
 void read_units(const ::draco::PointCloud& pc, Mesh& mesh, Notes* notes) {
   std::string text;
   if (!pc.GetMetadata() || !pc.GetMetadata()->GetEntryString("units", &text)) return;
-  if (const std::optional<Units> units = detail::units_from_string(text)) {
+  if (const std::optional<Units> units = units_from_string(text)) {
     mesh.units = *units;
   } else if (notes) {
     notes->push_back(fmt::format("unknown units \"{}\" in the Draco metadata ignored", text));
@@ -215,12 +215,6 @@ std::string message_text(std::string message) {
     message.pop_back();
   if (!message.empty()) message[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(message[0])));
   return message;
-}
-
-std::optional<Units> units_from_string(std::string_view text) {
-  for (Units units : {Units::Millimetres, Units::Centimetres, Units::Metres, Units::Inches})
-    if (text == to_string(units)) return units;
-  return std::nullopt;
 }
 
 Result<Decoded> decode(std::string_view bytes, std::string_view source, std::optional<std::uint64_t> base,

@@ -386,7 +386,7 @@ private:
     if (!extras.IsObject() || !extras.Has(std::string(kUnitsKey))) return;
     const tinygltf::Value& units = extras.Get(std::string(kUnitsKey));
     const std::optional<Units> known =
-        units.IsString() ? draco::detail::units_from_string(units.Get<std::string>()) : std::nullopt;
+        units.IsString() ? units_from_string(units.Get<std::string>()) : std::nullopt;
     if (known)
       mesh.units = *known;
     else

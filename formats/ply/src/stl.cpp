@@ -42,7 +42,7 @@ Units units_in(std::string_view text) {
   Scanner scan(text);
   for (Token t = scan.next(); !t.empty(); t = scan.next())
     if (t.text == "units")
-      if (const std::optional<Units> units = text::units_from_word(scan.next().text)) return *units;
+      if (const std::optional<Units> units = units_from_string(scan.next().text)) return *units;
   return Units::Unknown;
 }
 

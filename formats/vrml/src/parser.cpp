@@ -22,25 +22,7 @@ std::optional<Units> units_named(std::string_view text) {
     text.remove_prefix(1);
   while (!text.empty() && (text.back() == ' ' || text.back() == '\t'))
     text.remove_suffix(1);
-  struct Name {
-    std::string_view name;
-    Units units;
-  };
-  static constexpr std::array<Name, 12> names{{{"mm", Units::Millimetres},
-                                               {"millimetres", Units::Millimetres},
-                                               {"millimeters", Units::Millimetres},
-                                               {"cm", Units::Centimetres},
-                                               {"centimetres", Units::Centimetres},
-                                               {"centimeters", Units::Centimetres},
-                                               {"m", Units::Metres},
-                                               {"metres", Units::Metres},
-                                               {"meters", Units::Metres},
-                                               {"in", Units::Inches},
-                                               {"inches", Units::Inches},
-                                               {"inch", Units::Inches}}};
-  for (const Name& n : names)
-    if (text == n.name) return n.units;
-  return std::nullopt;
+  return units_from_string(text);
 }
 
 } // namespace

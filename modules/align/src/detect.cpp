@@ -345,6 +345,20 @@ double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 
 } // namespace
 
+Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const FaceFrame& frame) {
+  if (given.count() == kLandmarkCount || scan.vertex_count() == 0) return given;
+  std::vector<Vec3> points(scan.positions.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    points[i] = frame.scale * scan.positions[i];
+  const PointIndex index(points);
+  const Landmarks found = search_landmarks(points, scan.triangles, median_spacing(points, index),
+                                           Rigid{frame.rotation, frame.translation});
+  Landmarks out = given;
+  for (std::size_t i = 0; i < kLandmarkCount; ++i)
+    if (!out.points[i] && found.points[i]) out.points[i] = *found.points[i] / frame.scale;
+  return out;
+}
+
 Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
   const std::string source = scan.name;
   if (scan.vertex_count() < 100)

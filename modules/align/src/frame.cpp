@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include <vector>
 
@@ -102,6 +103,20 @@ Landmarks to_canonical(const Landmarks& scan, const FaceFrame& frame) {
   for (std::size_t i = 0; i < kLandmarkCount; ++i)
     if (scan.points[i]) out.points[i] = frame.to_canonical(*scan.points[i]);
   return out;
+}
+
+std::string write_alignment_json(const Landmarks& landmarks, const FaceFrame& frame,
+                                 std::optional<double> confidence) {
+  nlohmann::json j = nlohmann::json::parse(write_landmarks_json(landmarks));
+  nlohmann::json rows = nlohmann::json::array();
+  for (int r = 0; r < 3; ++r)
+    rows.push_back({frame.rotation(r, 0), frame.rotation(r, 1), frame.rotation(r, 2)});
+  j["to_canonical"] = {
+      {"rotation", rows},
+      {"translation_mm", {frame.translation.x(), frame.translation.y(), frame.translation.z()}},
+      {"scale_mm_per_unit", frame.scale}};
+  if (confidence) j["confidence"] = *confidence;
+  return j.dump(2) + "\n";
 }
 
 } // namespace pdeface::align

@@ -16,9 +16,6 @@ constexpr std::array<std::string_view, kLandmarkCount> kNames{
     "nose_tip",   "eye_inner_left", "eye_inner_right", "eye_outer_left", "eye_outer_right",
     "mouth_left", "mouth_right",    "face_top",        "face_bottom"};
 
-constexpr std::array<std::pair<Units, std::string_view>, 4> kUnitNames{
-    {{Units::Millimetres, "mm"}, {Units::Centimetres, "cm"}, {Units::Metres, "m"}, {Units::Inches, "in"}}};
-
 Error json_error(const json::parse_error& e, std::string_view bytes, std::string_view source) {
   // nlohmann reports the byte after the offending token (1-based); point at the token itself.
   const std::uint64_t offset = e.byte > 0 ? e.byte - 1 : 0;
@@ -109,10 +106,10 @@ Result<Landmarks> from_ours(const json& j, std::string_view source) {
                       std::string(source));
   Landmarks out;
   if (j.contains("units")) {
-    const auto it = std::ranges::find_if(kUnitNames, [&](const auto& u) { return j["units"] == u.second; });
-    if (it == kUnitNames.end())
-      return fail(fmt::format("unknown units {} (mm, cm, m or in)", j["units"].dump()));
-    out.units = it->first;
+    const std::optional<Units> units =
+        j["units"].is_string() ? units_from_string(j["units"].get<std::string>()) : std::nullopt;
+    if (!units) return fail(fmt::format("unknown units {} (mm, cm, m or in)", j["units"].dump()));
+    out.units = *units;
   }
   for (const auto& [key, value] : j["landmarks"].items()) {
     const std::optional<Landmark> l = landmark_from_name(key);

@@ -18,6 +18,24 @@ std::string_view to_string(Units units) noexcept {
   return "unknown";
 }
 
+std::optional<Units> units_from_string(std::string_view word) noexcept {
+  static constexpr std::pair<std::string_view, Units> kNames[] = {{"mm", Units::Millimetres},
+                                                                  {"millimetres", Units::Millimetres},
+                                                                  {"millimeters", Units::Millimetres},
+                                                                  {"cm", Units::Centimetres},
+                                                                  {"centimetres", Units::Centimetres},
+                                                                  {"centimeters", Units::Centimetres},
+                                                                  {"m", Units::Metres},
+                                                                  {"metres", Units::Metres},
+                                                                  {"meters", Units::Metres},
+                                                                  {"in", Units::Inches},
+                                                                  {"inch", Units::Inches},
+                                                                  {"inches", Units::Inches}};
+  for (const auto& [name, units] : kNames)
+    if (word == name) return units;
+  return std::nullopt;
+}
+
 double millimetres_per(Units units) noexcept {
   switch (units) {
   case Units::Unknown: return 0.0;

@@ -51,8 +51,5 @@ struct Decoded {
 //! geometry data"; messages longer than 300 characters are cut (tinygltf quotes whole data URIs).
 [[nodiscard]] std::string message_text(std::string message);
 
-//! The units a metadata or `extras` string names ("mm", "cm", "m", "in"), as `to_string(Units)` writes
-//! them.
-[[nodiscard]] std::optional<Units> units_from_string(std::string_view text);
 
 } // namespace pdeface::draco::detail

@@ -112,21 +112,11 @@ private:
   return value;
 }
 
-//! The units a word names ("mm", "millimetres", "m", "in", ...), or nullopt. Case-sensitive by design:
-//! the words our writers put in "units mm" comments.
-[[nodiscard]] inline std::optional<Units> units_from_word(std::string_view word) {
-  if (word == "mm" || word == "millimetres" || word == "millimeters") return Units::Millimetres;
-  if (word == "cm" || word == "centimetres" || word == "centimeters") return Units::Centimetres;
-  if (word == "m" || word == "metres" || word == "meters") return Units::Metres;
-  if (word == "in" || word == "inches") return Units::Inches;
-  return std::nullopt;
-}
-
 //! The units stated by a comment's text "units mm" (after the comment marker), or nullopt.
 [[nodiscard]] inline std::optional<Units> units_from_comment(std::string_view comment) {
   Scanner scan(comment);
   if (scan.next_on_line().text != "units") return std::nullopt;
-  const std::optional<Units> units = units_from_word(scan.next_on_line().text);
+  const std::optional<Units> units = units_from_string(scan.next_on_line().text);
   if (!units || !scan.next_on_line().empty()) return std::nullopt;
   return units;
 }

@@ -19,6 +19,7 @@ struct CropOptions {
 //! kept whole, loose pieces dropped. `landmarks` are in the canonical frame.
 //! Errors: `InvalidArgument` when the face's top, bottom or outer eye corners are missing; `NoFace` when
 //! nothing is left.
-[[nodiscard]] Result<Mesh> crop_face(const Mesh& canonical, const Landmarks& landmarks, const CropOptions& options = {});
+[[nodiscard]] Result<Mesh> crop_face(const Mesh& canonical, const Landmarks& landmarks,
+                                     const CropOptions& options = {});
 
 } // namespace pdeface::align

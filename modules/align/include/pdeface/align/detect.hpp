@@ -44,4 +44,8 @@ struct Detection {
 //! cue failed).
 [[nodiscard]] Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options = {});
 
+//! `given` with its missing landmarks found on the scan in the frame `frame` (which the given ones
+//! fixed): e.g. the face's top and bottom for menpo's 68 points, which have neither. Given ones are kept.
+[[nodiscard]] Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const FaceFrame& frame);
+
 } // namespace pdeface::align

@@ -13,6 +13,9 @@
 
 #include <Eigen/Geometry>
 
+#include <optional>
+#include <string>
+
 namespace pdeface::align {
 
 //! p_canonical = scale · rotation · p_scan + translation.
@@ -51,5 +54,11 @@ struct FaceFrame {
 [[nodiscard]] Mesh to_scan(const Mesh& canonical, const FaceFrame& frame);
 //! Landmarks mapped into the canonical frame (units become mm).
 [[nodiscard]] Landmarks to_canonical(const Landmarks& scan, const FaceFrame& frame);
+
+//! The landmark JSON of `write_landmarks_json`, plus what alignment found: `"to_canonical"` (rotation
+//! rows, translation in mm, scale in mm per scan unit) and, when given, `"confidence"`. Readers of
+//! landmark files ignore both, so the file can be passed back with `--landmarks`.
+[[nodiscard]] std::string write_alignment_json(const Landmarks& landmarks, const FaceFrame& frame,
+                                               std::optional<double> confidence = std::nullopt);
 
 } // namespace pdeface::align

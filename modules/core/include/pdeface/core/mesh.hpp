@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -27,6 +28,9 @@ using Triangle = std::array<std::uint32_t, 3>;
 enum class Units { Unknown, Millimetres, Centimetres, Metres, Inches };
 
 [[nodiscard]] std::string_view to_string(Units units) noexcept;
+//! The units a word names: "mm", "millimetres", "millimeters", "cm", ..., "m", "metres", "meters", "in",
+//! "inch", "inches" (case-sensitive: the words our writers put in files); nullopt for anything else.
+[[nodiscard]] std::optional<Units> units_from_string(std::string_view word) noexcept;
 //! Millimetres per unit (1 for mm, 1000 for m); 0 for `Units::Unknown`.
 [[nodiscard]] double millimetres_per(Units units) noexcept;
 
