@@ -162,5 +162,49 @@ TEST_F(Cli, InfoKeepsGoingAfterABadFile) {
   EXPECT_NE(r.out.find("face.obj"), std::string::npos) << r.out;
 }
 
+TEST_F(Cli, AlignWritesTheMeshLandmarksAndPreview) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  Outcome a = run({"align", path("face.ply"), "-o", path("aligned.ply"), "--crop", "--preview",
+                   path("face.svg"), "--landmarks-out", path("landmarks.json")});
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  EXPECT_NE(a.out.find("face found, confidence"), std::string::npos) << a.out;
+  EXPECT_NE(a.out.find("cropped to the face"), std::string::npos) << a.out;
+  const std::string svg = slurp(work_ / "face.svg");
+  EXPECT_TRUE(svg.starts_with("<svg")) << svg.substr(0, 80);
+  EXPECT_NE(svg.find("nose_tip"), std::string::npos);
+  const auto landmarks = nlohmann::json::parse(slurp(work_ / "landmarks.json"));
+  EXPECT_EQ(landmarks["landmarks"].size(), 9U);
+  EXPECT_TRUE(landmarks.contains("to_canonical"));
+
+  // The landmarks found can be given back instead of detecting again.
+  Outcome given =
+      run({"align", path("face.ply"), "-o", path("again.obj"), "--landmarks", path("landmarks.json")});
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  EXPECT_NE(given.out.find("landmarks given"), std::string::npos) << given.out;
+}
+
+TEST_F(Cli, AlignFailsCleanlyWithoutAFace) {
+  // A flat sheet: symmetric every which way, but no nose.
+  std::string off = "OFF\n1600 0 0\n";
+  for (int i = 0; i < 40; ++i)
+    for (int j = 0; j < 40; ++j)
+      off += std::to_string(4 * i) + " " + std::to_string(4 * j) + " 0\n";
+  std::ofstream(work_ / "sheet.off") << off;
+  const std::size_t before = files();
+  Outcome r = run({"align", path("sheet.off"), "-o", path("aligned.ply")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(lines(r.err), 1U) << r.err;
+  EXPECT_NE(r.err.find("sheet.off"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("no face found"), std::string::npos) << r.err;
+  EXPECT_EQ(files(), before) << "no output";
+
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  std::ofstream(work_ / "bad.json") << "{\"landmarks\": {\"nose_tip\": [1, 2]}}";
+  Outcome b = run({"align", path("face.ply"), "-o", path("x.ply"), "--landmarks", path("bad.json")});
+  EXPECT_EQ(b.exit_code, 1);
+  EXPECT_NE(b.err.find("bad.json"), std::string::npos) << b.err;
+  EXPECT_NE(b.err.find("three finite numbers"), std::string::npos) << b.err;
+}
+
 } // namespace
 } // namespace pdeface

@@ -100,7 +100,7 @@ Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all,
   const auto n = points.size();
   Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(n)), dst(3, static_cast<Eigen::Index>(n));
   std::vector<std::pair<double, std::size_t>> order(n);
-  for (int iteration = 0; iteration < 40; ++iteration) {
+  for (int iteration = 0; iteration < 30; ++iteration) {
     std::vector<Vec3> moved(n), target(n);
     for (std::size_t i = 0; i < n; ++i) {
       moved[i] = m(points[i]);
@@ -119,7 +119,7 @@ Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all,
     const Eigen::Matrix4d t = Eigen::umeyama(src.leftCols(k), dst.leftCols(k), false);
     const Eigen::Matrix3d r = t.topLeftCorner<3, 3>();
     m = {r * m.a, r * m.b + t.topRightCorner<3, 1>()};
-    if (Eigen::AngleAxisd(r).angle() < 1e-5 && t.topRightCorner<3, 1>().norm() < 1e-4) break;
+    if (Eigen::AngleAxisd(r).angle() < 1e-4 && t.topRightCorner<3, 1>().norm() < 1e-3) break; // 0.006°, 1 µm
   }
   return m;
 }
@@ -375,8 +375,11 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   const PointIndex index(points);
   const double spacing = median_spacing(points, index);
   const std::vector<Vec3> sample = voxel_subsample(points, std::max(options.sample_mm, spacing));
-  const std::vector<Vec3> probe = thin(sample, 400);
-  const std::vector<Vec3> fit_points = thin(sample, 1500);
+  // The search over candidate planes matches against the subsample (nearest-neighbour queries dominate
+  // the cost); the final refinement around the nose against every point.
+  const PointIndex coarse(sample);
+  const std::vector<Vec3> probe = thin(sample, 300);
+  const std::vector<Vec3> fit_points = thin(sample, 1000);
 
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& p : sample)
@@ -386,11 +389,11 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   // Symmetry plane candidates through the centroid in every direction; the best few refined by ICP.
   std::vector<std::pair<double, Vec3>> scored;
   for (const Vec3& n : hemisphere(options.directions))
-    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), probe, index), n);
+    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), probe, coarse), n);
   std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
   std::vector<Vec3> seeds;
   for (const auto& [rms, n] : scored) {
-    if (seeds.size() == 6) break;
+    if (seeds.size() == 4) break;
     if (std::ranges::none_of(seeds, [&](const Vec3& s) { return std::abs(s.dot(n)) > std::cos(0.26); }))
       seeds.push_back(n);
   }
@@ -404,9 +407,9 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   double best_prominence = 0.0;
   const double slab = std::max(1.0, 0.6 * spacing);
   for (const Vec3& n : seeds) {
-    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), fit_points, points, index);
+    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), fit_points, sample, coarse);
     const Plane plane = plane_of(m, fit_points);
-    const double rms = mirror_rms(mirror_of(plane), fit_points, index);
+    const double rms = mirror_rms(mirror_of(plane), fit_points, coarse);
     const std::optional<Nose> nose = find_nose(plane, points, slab);
     if (!nose) continue;
     best_prominence = std::max(best_prominence, nose->prominence);
