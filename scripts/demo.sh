@@ -14,4 +14,6 @@ for ext in wrl obj glb drc; do
   "$pdeface" convert "$out/sample.ply" "$out/sample.$ext"
 done
 "$pdeface" info "$out/sample.drc"
+"$pdeface" align "$out/sample.glb" -o "$out/aligned.ply" --crop --preview "$out/aligned.svg" \
+  --landmarks-out "$out/landmarks.json"
 echo "demo outputs in $out"
