@@ -7,6 +7,8 @@
 
 #include "pdeface_test.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace pdeface::align {
 namespace {
 
@@ -34,12 +36,7 @@ INSTANTIATE_TEST_SUITE_P(SharedFaces, RealScan,
                          ::testing::Values("facefuns_f18.ply", "facefuns_m66.ply", "facefuns_f56_points.ply",
                                            "facefuns_m46.drc", "james.obj", "fran_cut.wrl",
                                            "stfaces_neutral.wrl"),
-                         [](const auto& param_info) {
-                           std::string n = param_info.param;
-                           for (char& ch : n)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return n;
-                         });
+                         test::FileParamName());
 
 TEST(RealScan, JamesAgainstHandPlacedLandmarks) {
   PDEFACE_FACE_OR_SKIP(obj, "james.obj");
@@ -67,6 +64,34 @@ TEST(RealScan, JamesAgainstHandPlacedLandmarks) {
   std::printf("frame difference %.1f degrees\n", angle);
   EXPECT_LT(angle, 8.0);
 }
+
+// Landmarks hand-placed on facefuns_f18 (tests/data/align/facefuns_landmarks.json, as vertex indices:
+// the six facefuns scans share one topology) give the same frame as detection, within 2 degrees.
+class GivenAgainstDetected : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(GivenAgainstDetected, SameFrameWithinTwoDegrees) {
+  PDEFACE_FACE_OR_SKIP(path, GetParam());
+  auto scan = formats::read_mesh(path);
+  ASSERT_TRUE(scan.ok()) << scan.error().to_string();
+  const auto fixture =
+      nlohmann::json::parse(read_file(test::fixtures() / "align" / "facefuns_landmarks.json").value());
+  Landmarks given;
+  for (const auto& [key, vertex] : fixture["vertices"].items())
+    given[*landmark_from_name(key)] = scan->mesh.positions.at(vertex.get<std::size_t>());
+  auto hand = frame_from_landmarks(given, Units::Millimetres);
+  ASSERT_TRUE(hand.ok()) << hand.error().to_string();
+  auto found = detect_landmarks(scan->mesh);
+  ASSERT_TRUE(found.ok()) << found.error().to_string();
+  const double angle =
+      Eigen::AngleAxisd(hand->rotation * found->frame.rotation.transpose()).angle() * 180.0 / 3.14159265;
+  EXPECT_LT(angle, 2.0) << GetParam();
+  std::printf("%s: frames %.2f degrees apart\n", GetParam(), angle);
+}
+
+INSTANTIATE_TEST_SUITE_P(Facefuns, GivenAgainstDetected,
+                         ::testing::Values("facefuns_f18.ply", "facefuns_f36.ply", "facefuns_f56.ply",
+                                           "facefuns_m26.ply", "facefuns_m46.ply", "facefuns_m66.ply"),
+                         test::FileParamName());
 
 } // namespace
 } // namespace pdeface::align

@@ -45,12 +45,8 @@ TEST_P(SharedFace, ReadsWithTheManifestCounts) {
   EXPECT_TRUE(validate(loaded->mesh).ok());
 }
 
-INSTANTIATE_TEST_SUITE_P(Manifest, SharedFace, ::testing::ValuesIn(kScans), [](const auto& param_info) {
-  std::string name = param_info.param.file;
-  for (char& c : name)
-    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
-  return name;
-});
+INSTANTIATE_TEST_SUITE_P(Manifest, SharedFace, ::testing::ValuesIn(kScans),
+                         [](const auto& param_info) { return test::test_name(param_info.param.file); });
 
 // The facefuns scans share one topology: a face open at the back with 2 boundary loops.
 TEST(SharedFaces, FacefunsTopology) {

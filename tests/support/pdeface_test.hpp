@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -57,6 +58,19 @@ public:
 
 private:
   std::filesystem::path path_;
+};
+
+//! A test name from a file name ("facefuns_f18.ply" -> "facefuns_f18_ply"), for parameterised tests.
+inline std::string test_name(std::string_view file) {
+  std::string name(file);
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+  return name;
+}
+
+//! Names the instances of a test parameterised by file names.
+struct FileParamName {
+  template <class Info> std::string operator()(const Info& info) const { return test_name(info.param); }
 };
 
 } // namespace pdeface::test

@@ -17,14 +17,36 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
     if (std::isnan(cur) || z > cur) cur = z;
   };
   if (triangles.empty()) {
+    // A point cloud: the front-most layer, smoothly. First the front-most depth within the splat radius,
+    // then a Gaussian-weighted mean of the points up to 3 mm behind it, so that the map (and landmarks
+    // found in it) moves continuously with the frame instead of jumping from point to point.
     const int reach = static_cast<int>(std::ceil(splat / cell_));
-    for (const Vec3& q : p) {
+    auto for_cells = [&](const Vec3& q, const auto& visit) {
       const int c0 = static_cast<int>(std::lround((q.x() - x0_) / cell_));
       const int r0 = static_cast<int>(std::lround((q.y() - y0_) / cell_));
       for (int dr = -reach; dr <= reach; ++dr)
-        for (int dc = -reach; dc <= reach; ++dc)
-          if ((dr * dr + dc * dc) * cell_ * cell_ <= splat * splat) keep(r0 + dr, c0 + dc, q.z());
-    }
+        for (int dc = -reach; dc <= reach; ++dc) {
+          const int r = r0 + dr, c = c0 + dc;
+          if (r < 0 || c < 0 || r >= rows() || c >= cols()) continue;
+          const double dx = x_of(c) - q.x(), dy = y_of(r) - q.y();
+          if (dx * dx + dy * dy <= splat * splat) visit(r, c, dx * dx + dy * dy);
+        }
+    };
+    for (const Vec3& q : p)
+      for_cells(q, [&](int r, int c, double) { keep(r, c, q.z()); });
+    Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(z_.rows(), z_.cols());
+    Eigen::MatrixXd weight = Eigen::MatrixXd::Zero(z_.rows(), z_.cols());
+    const double sigma2 = 0.25 * splat * splat;
+    for (const Vec3& q : p)
+      for_cells(q, [&](int r, int c, double d2) {
+        if (q.z() < z_(r, c) - 3.0) return; // behind the front: an ear, the other side
+        const double w = std::exp(-0.5 * d2 / sigma2);
+        sum(r, c) += w * q.z();
+        weight(r, c) += w;
+      });
+    for (Eigen::Index r = 0; r < z_.rows(); ++r)
+      for (Eigen::Index c = 0; c < z_.cols(); ++c)
+        if (weight(r, c) > 0.0) z_(r, c) = sum(r, c) / weight(r, c);
     return;
   }
   for (const Triangle& t : triangles) {
@@ -77,10 +99,19 @@ void DepthMap::fill_holes(int max_gap) {
 }
 
 std::optional<double> DepthMap::at(double x, double y) const {
-  const int c = static_cast<int>(std::lround((x - x0_) / cell_));
-  const int r = static_cast<int>(std::lround((y - y0_) / cell_));
-  if (r < 0 || c < 0 || r >= rows() || c >= cols() || !known(r, c)) return std::nullopt;
-  return z_(r, c);
+  // Bilinear between the four cells around (x, y) when all are known, so that depths, and landmarks found
+  // from them, move continuously with the frame; else the nearest cell.
+  const double u = (x - x0_) / cell_, v = (y - y0_) / cell_;
+  const int c = static_cast<int>(std::floor(u)), r = static_cast<int>(std::floor(v));
+  if (r >= 0 && c >= 0 && r + 1 < rows() && c + 1 < cols() && known(r, c) && known(r + 1, c) &&
+      known(r, c + 1) && known(r + 1, c + 1)) {
+    const double fu = u - c, fv = v - r;
+    return (1 - fv) * ((1 - fu) * z_(r, c) + fu * z_(r, c + 1)) +
+           fv * ((1 - fu) * z_(r + 1, c) + fu * z_(r + 1, c + 1));
+  }
+  const int cn = static_cast<int>(std::lround(u)), rn = static_cast<int>(std::lround(v));
+  if (rn < 0 || cn < 0 || rn >= rows() || cn >= cols() || !known(rn, cn)) return std::nullopt;
+  return z_(rn, cn);
 }
 
 std::optional<double> DepthMap::relief(double x, double y, double radius) const {

@@ -96,11 +96,11 @@ double mirror_rms(const Mirror& m, std::span<const Vec3> points, const PointInde
 
 // Registration of the mirrored scan onto the scan (trimmed ICP, rigid fits by Eigen::umeyama).
 Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all, const PointIndex& index,
-              double keep = 0.7) {
+              double keep = 0.7, int iterations = 30) {
   const auto n = points.size();
   Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(n)), dst(3, static_cast<Eigen::Index>(n));
   std::vector<std::pair<double, std::size_t>> order(n);
-  for (int iteration = 0; iteration < 30; ++iteration) {
+  for (int iteration = 0; iteration < iterations; ++iteration) {
     std::vector<Vec3> moved(n), target(n);
     for (std::size_t i = 0; i < n; ++i) {
       moved[i] = m(points[i]);
@@ -188,6 +188,23 @@ std::optional<Nose> find_nose(const Plane& plane, std::span<const Vec3> points, 
 
 // ---- landmarks in the depth map -------------------------------------------------------------------------
 
+// The grid's best point (x, y) of a score, moved to the vertex of the parabola through it and its two
+// neighbours along each axis: landmarks then move continuously with the frame instead of by whole cells.
+Eigen::Vector2d refined_peak(const auto& score, Eigen::Vector2d at, double h) {
+  const std::optional<double> centre = score(at.x(), at.y());
+  if (!centre) return at;
+  Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+  for (int axis = 0; axis < 2; ++axis) {
+    const Eigen::Vector2d d = axis == 0 ? Eigen::Vector2d(h, 0) : Eigen::Vector2d(0, h);
+    const std::optional<double> minus = score(at.x() - d.x(), at.y() - d.y());
+    const std::optional<double> plus = score(at.x() + d.x(), at.y() + d.y());
+    if (!minus || !plus) continue;
+    const double curvature = *minus - 2.0 * *centre + *plus;
+    if (curvature < 0.0) shift[axis] = std::clamp(0.5 * (*minus - *plus) / curvature, -0.5, 0.5) * h;
+  }
+  return at + shift;
+}
+
 // The lateral end of a horizontal hollow (the mouth line, the fissure of an eye): walking from x_from
 // towards x_to, the columns whose most hollow point (over [y0, y1]) is at least `fraction` as deep as
 // the deepest column's; the end is the last of them reached without a gap.
@@ -207,7 +224,18 @@ std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_
   auto end = deepest;
   for (auto it = deepest; it != columns.end() && it->first <= fraction * deepest->first; ++it)
     end = it;
-  return end->second;
+  // Between the last column in the hollow and the next one out, where the relief crosses the threshold.
+  Eigen::Vector2d where = end->second;
+  if (const auto next = end + 1; next != columns.end() && next->first > end->first) {
+    const double t =
+        std::clamp((fraction * deepest->first - end->first) / (next->first - end->first), 0.0, 1.0);
+    where = end->second + t * (next->second - end->second);
+  }
+  const auto hollowness = [&](double x, double y) -> std::optional<double> {
+    const auto rel = map.relief(x, y, r);
+    return rel ? std::optional<double>(-*rel) : std::nullopt;
+  };
+  return Eigen::Vector2d(where.x(), refined_peak(hollowness, where, map.cell()).y());
 }
 
 // The most cup-shaped point of a window, as (x, y) in the frame.
@@ -221,7 +249,8 @@ std::optional<Eigen::Vector2d> most_cupped(const detail::DepthMap& map, double x
         top = *k;
         best = Eigen::Vector2d(x, y);
       }
-  return best;
+  if (!best) return best;
+  return refined_peak([&](double x, double y) { return map.cupness(x, y); }, *best, map.cell());
 }
 
 // A rigid map into a face frame (mm): q = rotation · p + translation.
@@ -240,13 +269,18 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   for (std::size_t i = 0; i < points.size(); ++i)
     local[i] = frame.rotation * points[i] + frame.translation;
   detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
-  map.rasterise(local, triangles, std::max(1.0, 0.75 * spacing));
+  map.rasterise(local, triangles, std::max(1.5, 1.5 * spacing));
   map.fill_holes(4);
 
   std::optional<Eigen::Vector3d> tip; // (x, y, z) in the frame
   for (double y = -15.0; y <= 15.0; y += 1.0)
     for (double x = -10.0; x <= 10.0; x += 1.0)
       if (const auto z = map.at(x, y); z && (!tip || *z > tip->z())) tip = Eigen::Vector3d(x, y, *z);
+  if (tip) {
+    const Eigen::Vector2d xy =
+        refined_peak([&](double x, double y) { return map.at(x, y); }, tip->head<2>(), 1.0);
+    tip = Eigen::Vector3d(xy.x(), xy.y(), map.at(xy.x(), xy.y()).value_or(tip->z()));
+  }
 
   Landmarks found;
   auto place = [&](Landmark l, double x, double y) {
@@ -341,6 +375,18 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   return found;
 }
 
+// RMS distance of the landmarks, mapped by the frame, from the average face's; a landmark not found
+// counts as 30 mm off (else finding fewer would look like fitting better).
+double fit_rms(const Landmarks& landmarks, const FaceFrame& frame) {
+  constexpr double kMissing = 30.0;
+  double sum = 0.0;
+  const Landmarks canonical = to_canonical(landmarks, frame);
+  for (std::size_t i = 0; i < kLandmarkCount; ++i)
+    sum += canonical.points[i] ? (*canonical.points[i] - *canonical_template().points[i]).squaredNorm()
+                               : kMissing * kMissing;
+  return std::sqrt(sum / kLandmarkCount);
+}
+
 double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 
 } // namespace
@@ -391,11 +437,27 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   for (const Vec3& n : hemisphere(options.directions))
     scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), probe, coarse), n);
   std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
-  std::vector<Vec3> seeds;
+  // The best 16 distinct directions get a few registration steps on the probe (a plane through the
+  // centroid may be offset from the face's, e.g. on a scan cut asymmetrically); the best 4 of those
+  // seed the full refinement.
+  std::vector<std::pair<double, Plane>> rough;
+  std::vector<Vec3> tried;
   for (const auto& [rms, n] : scored) {
+    if (tried.size() == 16) break;
+    if (std::ranges::any_of(tried, [&](const Vec3& s) { return std::abs(s.dot(n)) > std::cos(0.17); }))
+      continue;
+    tried.push_back(n);
+    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), probe, sample, coarse, 0.7, 6);
+    const Plane plane = plane_of(m, probe);
+    rough.emplace_back(mirror_rms(mirror_of(plane), probe, coarse), plane);
+  }
+  std::ranges::sort(rough, {}, &std::pair<double, Plane>::first);
+  std::vector<Plane> seeds;
+  for (const auto& [rms, plane] : rough) {
     if (seeds.size() == 4) break;
-    if (std::ranges::none_of(seeds, [&](const Vec3& s) { return std::abs(s.dot(n)) > std::cos(0.26); }))
-      seeds.push_back(n);
+    if (std::ranges::none_of(
+            seeds, [&](const Plane& q) { return std::abs(q.normal.dot(plane.normal)) > std::cos(0.17); }))
+      seeds.push_back(plane);
   }
 
   struct Candidate {
@@ -403,21 +465,41 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     double rms;
     Nose nose;
   };
+  // The scan's outline need not be symmetric (a cut, hair, an ear missing), and a face is close to a
+  // cylinder, whose symmetry planes are many: a plane is judged on the central face only, 70 mm around
+  // its nose, where a face is most symmetric and a scan most complete, keeping nearly every pair so that
+  // the nose and the eyes (which show the plane's yaw) count.
+  const double slab = std::max(1.0, 0.6 * spacing);
+  auto around_the_nose = [&](const Candidate& c) -> std::optional<Candidate> {
+    std::vector<Vec3> central;
+    for (const Vec3& p : sample)
+      if ((p - c.nose.tip).norm() < 70.0) central.push_back(p);
+    if (central.size() < 50) return std::nullopt;
+    const Mirror m = refine(mirror_of(c.plane), central, points, index, 0.95);
+    const Plane plane = plane_of(m, central);
+    const std::optional<Nose> nose = find_nose(plane, points, slab);
+    if (!nose || nose->prominence < kMinNoseProminence) return std::nullopt;
+    return Candidate{plane, mirror_rms(mirror_of(plane), central, index), *nose};
+  };
+
   std::optional<Candidate> chosen;
   double best_prominence = 0.0;
-  const double slab = std::max(1.0, 0.6 * spacing);
-  for (const Vec3& n : seeds) {
-    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), fit_points, sample, coarse);
+  for (const Plane& seed : seeds) {
+    const Mirror m = refine(mirror_of(seed), fit_points, sample, coarse);
     const Plane plane = plane_of(m, fit_points);
-    const double rms = mirror_rms(mirror_of(plane), fit_points, coarse);
     const std::optional<Nose> nose = find_nose(plane, points, slab);
     if (!nose) continue;
     best_prominence = std::max(best_prominence, nose->prominence);
     if (nose->prominence < kMinNoseProminence) continue;
-    // A good symmetry plane with a nose on it; among several, prefer symmetry, then the clearer nose.
-    const double merit = nose->prominence / (1.0 + rms);
-    if (!chosen || merit > chosen->nose.prominence / (1.0 + chosen->rms))
-      chosen = Candidate{plane, rms, *nose};
+    // The plane most symmetric around its nose wins (a wrong plane through a face can show a bigger
+    // "nose": the chin, or the nose seen askew, but not a symmetric face around it).
+    const std::optional<Candidate> refined =
+        around_the_nose({plane, mirror_rms(mirror_of(plane), fit_points, coarse), *nose});
+    if (std::getenv("PDEFACE_DEBUG"))
+      std::fprintf(stderr, "seed (%.2f %.2f %.2f) -> plane (%.3f %.3f %.3f) nose %.1f, central rms %.2f\n",
+                   seed.normal.x(), seed.normal.y(), seed.normal.z(), plane.normal.x(), plane.normal.y(),
+                   plane.normal.z(), nose->prominence, refined ? refined->rms : -1.0);
+    if (refined && (!chosen || refined->rms < chosen->rms)) chosen = refined;
   }
   if (!chosen)
     return make_error(
@@ -426,22 +508,8 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
                     "a nose stands at least {:.0f} mm out of its profile)",
                     best_prominence, kMinNoseProminence),
         source);
-
-  // The scan's outline need not be symmetric (a cut, hair, an ear missing): refine the plane again on
-  // the central face only, around the nose, where a face is most symmetric and a scan most complete.
-  for (int round = 0; round < 2; ++round) {
-    std::vector<Vec3> central;
-    for (const Vec3& p : sample)
-      if ((p - chosen->nose.tip).norm() < 70.0) central.push_back(p);
-    if (central.size() < 50) break;
-    // Keep nearly every pair: on a face, which is close to a cylinder, the yaw of the plane shows only
-    // in the features (nose, eyes), and trimming would throw exactly them away.
-    const Mirror m = refine(mirror_of(chosen->plane), central, points, index, 0.95);
-    const Plane plane = plane_of(m, central);
-    const std::optional<Nose> nose = find_nose(plane, points, slab);
-    if (!nose || nose->prominence < kMinNoseProminence) break;
-    chosen = Candidate{plane, mirror_rms(mirror_of(plane), central, index), *nose};
-  }
+  if (const std::optional<Candidate> again = around_the_nose(*chosen))
+    chosen = again; // around the better nose
 
   if (std::getenv("PDEFACE_DEBUG")) {
     const Nose& dn = chosen->nose;
@@ -453,20 +521,38 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
                  dn.forward.y(), dn.forward.z(), dn.up.x(), dn.up.y(), dn.up.z(), dn.prominence, spacing);
   }
   // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
+  // Search the landmarks in it, fit the frame to them, and search again in the better frame. The nose's
+  // shape says which way is up, but not always clearly (a short nose, a low-resolution scan): both ways
+  // are tried, and the one whose landmarks sit best on an average face wins.
   const Nose& nose = chosen->nose;
-  Eigen::Matrix3d r;
-  r.row(1) = nose.up.transpose();
-  r.row(2) = nose.forward.transpose();
-  r.row(0) = nose.up.cross(nose.forward).transpose();
-  Rigid frame_mm{r, -r * nose.tip};
-  // Search the landmarks in that frame, fit the frame to them, and search again in the better frame.
-  Landmarks found;
-  for (int round = 0; round < 2; ++round) {
-    found = search_landmarks(points, work.triangles, spacing, frame_mm);
-    Result<FaceFrame> fit = frame_from_landmarks(found, Units::Millimetres);
-    if (!fit) break;
-    frame_mm = {fit->rotation, fit->translation};
+  struct Attempt {
+    Landmarks found; // mm
+    FaceFrame frame; // from mm
+    double fit_rms = std::numeric_limits<double>::infinity();
+  };
+  std::optional<Attempt> best;
+  for (const Vec3& up : {nose.up, Vec3(-nose.up)}) {
+    Eigen::Matrix3d r;
+    r.row(1) = up.transpose();
+    r.row(2) = nose.forward.transpose();
+    r.row(0) = up.cross(nose.forward).transpose();
+    Rigid frame_mm{r, -r * nose.tip};
+    Attempt attempt;
+    // Until the frame stops moving (a fixed point does not depend on where the search started).
+    for (int round = 0; round < 6; ++round) {
+      attempt.found = search_landmarks(points, work.triangles, spacing, frame_mm);
+      Result<FaceFrame> fit = frame_from_landmarks(attempt.found, Units::Millimetres);
+      if (!fit) break;
+      attempt.frame = *fit;
+      attempt.fit_rms = fit_rms(attempt.found, *fit);
+      const double turn = Eigen::AngleAxisd(fit->rotation * frame_mm.rotation.transpose()).angle();
+      const double shift = (fit->translation - frame_mm.translation).norm();
+      frame_mm = {fit->rotation, fit->translation};
+      if (round > 0 && turn < 1e-4 && shift < 0.01) break; // 0.006°, 10 µm
+    }
+    if (!best || attempt.fit_rms < best->fit_rms) best = std::move(attempt);
   }
+  Landmarks found = best->found;
   for (auto& p : found.points)
     if (p) *p /= mm;
   found.units = units;
@@ -480,15 +566,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   out.symmetry = {chosen->plane.normal, chosen->plane.offset / mm};
   out.symmetry_rms_mm = chosen->rms;
   out.nose_prominence_mm = nose.prominence;
-  double sum = 0.0;
-  int n = 0;
-  const Landmarks canonical = to_canonical(found, *frame);
-  for (std::size_t i = 0; i < kLandmarkCount; ++i)
-    if (canonical.points[i]) {
-      sum += (*canonical.points[i] - *canonical_template().points[i]).squaredNorm();
-      ++n;
-    }
-  out.fit_rms_mm = std::sqrt(sum / n);
+  out.fit_rms_mm = best->fit_rms;
   const double coverage = static_cast<double>(found.count()) / kLandmarkCount;
   out.confidence = std::min({clamp01(1.0 - (out.symmetry_rms_mm - 2.0) / 6.0),
                              clamp01((nose.prominence - kMinNoseProminence) / 12.0),
