@@ -2,11 +2,12 @@
 // Number words to values: exact (fast_float is correctly rounded) and strict (the whole word must be the
 // number, so "1.2.3" or "4x" is an error, never a silently shortened value).
 
-#include <fast_float/fast_float.h>
+#include "pdeface/text/scanner.hpp"
 
 #include <charconv>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string_view>
 #include <system_error>
 
@@ -15,12 +16,9 @@ namespace pdeface::vrml::detail {
 //! Parses a VRML float (`[+-]digits[.digits][e[+-]digits]`, also `inf`/`nan`, which callers reject as
 //! non-finite). False if the word is not entirely a number.
 template <class T> [[nodiscard]] inline bool parse_float(std::string_view word, T& value) {
-  const char* first = word.data();
-  const char* last = first + word.size();
-  // VRML allows a leading '+'; from_chars (and so fast_float) does not.
-  if (first != last && *first == '+' && last - first > 1 && first[1] != '-' && first[1] != '+') ++first;
-  const fast_float::from_chars_result r = fast_float::from_chars(first, last, value);
-  return r.ec == std::errc() && r.ptr == last;
+  const std::optional<T> parsed = text::parse_real<T>(word);
+  if (parsed) value = *parsed;
+  return parsed.has_value();
 }
 
 //! Parses a VRML SFInt32: decimal or `0x` hexadecimal, optionally signed, within 32 bits.

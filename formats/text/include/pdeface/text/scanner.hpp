@@ -94,13 +94,18 @@ private:
 };
 
 //! The whole token as a number ("1", "-2.5e3", "+0.5", "nan", "inf"), or nullopt if any of it is not.
-//! Correctly rounded (fast_float). Values beyond the double range come back as infinities.
-[[nodiscard]] inline std::optional<double> parse_double(std::string_view token) {
+//! Correctly rounded (fast_float) to `T` (float or double). Values beyond its range come back as
+//! infinities: callers reject non-finite values.
+template <class T = double> [[nodiscard]] inline std::optional<T> parse_real(std::string_view token) {
   if (token.size() > 1 && token.front() == '+' && token[1] != '-') token.remove_prefix(1);
-  double value = 0.0;
+  T value = 0;
   const auto [end, ec] = fast_float::from_chars(token.data(), token.data() + token.size(), value);
   if (ec != std::errc() || end != token.data() + token.size() || token.empty()) return std::nullopt;
   return value;
+}
+
+[[nodiscard]] inline std::optional<double> parse_double(std::string_view token) {
+  return parse_real<double>(token);
 }
 
 //! The whole token as a decimal integer (optionally signed), or nullopt.
