@@ -96,12 +96,27 @@ TEST(Detect, NoFaceInShapesWithoutANose) {
   }
 }
 
-TEST(Detect, TooFewPoints) {
+TEST(Detect, NoFaceInAWholeSphere) {
+  Mesh sphere;
+  for (int i = 1; i < 60; ++i)
+    for (int j = 0; j < 120; ++j) {
+      const double theta = 3.14159265358979 * i / 60.0, phi = 3.14159265358979 * j / 60.0;
+      sphere.positions.emplace_back(90.0 * std::sin(theta) * std::cos(phi),
+                                    90.0 * std::sin(theta) * std::sin(phi), 90.0 * std::cos(theta));
+    }
+  auto found = detect_landmarks(sphere);
+  ASSERT_FALSE(found.ok());
+  EXPECT_EQ(found.error().code, ErrorCode::NoFace);
+}
+
+TEST(Detect, AHandfulOfPointsIsNoFace) {
   Mesh tiny;
-  tiny.positions.assign(10, Vec3::Zero());
+  for (int i = 0; i < 10; ++i)
+    tiny.positions.emplace_back(i, i * i, 0.5 * i);
   auto found = detect_landmarks(tiny);
   ASSERT_FALSE(found.ok());
-  EXPECT_EQ(found.error().code, ErrorCode::Empty);
+  EXPECT_EQ(found.error().code, ErrorCode::NoFace);
+  EXPECT_EQ(found.error().message, "no face found: 10 points are too few to hold one");
 }
 
 } // namespace

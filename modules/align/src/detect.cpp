@@ -408,8 +408,9 @@ Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const Fac
 Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
   const std::string source = scan.name;
   if (scan.vertex_count() < 100)
-    return make_error(ErrorCode::Empty,
-                      fmt::format("{} points are too few to find a face in", scan.vertex_count()), source);
+    return make_error(ErrorCode::NoFace,
+                      fmt::format("no face found: {} points are too few to hold one", scan.vertex_count()),
+                      source);
   const Units units = detect_units(scan);
   const double mm = millimetres_per(units);
 

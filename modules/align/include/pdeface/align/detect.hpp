@@ -39,7 +39,7 @@ struct Detection {
   double fit_rms_mm = 0.0;         //!< residual of the landmarks against the average face after the fit
 };
 
-//! Finds the landmarks of the face in `scan`. Errors: `Empty` (too few points), `NoFace` (no nose-like
+//! Finds the landmarks of the face in `scan`. Errors: `NoFace` (fewer than 100 points, no nose-like
 //! feature on any symmetry plane, or confidence below `options.min_confidence`; the message says which
 //! cue failed).
 [[nodiscard]] Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options = {});
