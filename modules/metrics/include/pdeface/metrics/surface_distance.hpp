@@ -1,0 +1,85 @@
+#pragma once
+//! \file
+//! Distances between surfaces, as mesh-compression users measure them (Metro, MeshLab's Hausdorff
+//! filter): points sampled on one mesh, their distance to the other mesh's surface, both ways.
+
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/core/point_index.hpp"
+#include "pdeface/core/result.hpp"
+
+#include <optional>
+#include <vector>
+
+namespace pdeface::metrics {
+
+//! Exact nearest-point queries on a triangle mesh's surface (on a point cloud: its nearest point). Built
+//! once: a bounding-volume hierarchy of axis-aligned boxes over the triangles (median splits, 4
+//! triangles per leaf), searched nearest box first and pruned by box distance, so a query tests a few
+//! dozen triangles whatever the mesh's size or its longest edge. Queries are const and thread-safe.
+class SurfaceDistance {
+public:
+  //! \pre `mesh` stays alive and unchanged while this object is used.
+  //! \throw std::invalid_argument for a mesh without vertices.
+  explicit SurfaceDistance(const Mesh& mesh);
+
+  struct Nearest {
+    Vec3 point;           //!< the nearest point of the surface
+    double distance;      //!< to it
+    std::size_t triangle; //!< the triangle holding it (for a point cloud: the point's index)
+  };
+  [[nodiscard]] Nearest nearest(const Vec3& query) const;
+  [[nodiscard]] double distance(const Vec3& query) const { return nearest(query).distance; }
+
+private:
+  struct Node {
+    Box box;
+    std::uint32_t first = 0; //!< leaf: first index into order_; inner: index of the left child
+    std::uint32_t count =
+        0; //!< leaf: number of triangles; inner: 0 (the right child follows the left's subtree)
+    std::uint32_t right = 0; //!< inner: index of the right child
+  };
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::vector<Vec3>& centroids);
+
+  const Mesh* mesh_;
+  std::optional<PointIndex> points_; //!< for a point cloud
+  std::vector<Node> nodes_;
+  std::vector<std::uint32_t> order_; //!< triangle indices, grouped by leaf
+};
+
+//! The point of triangle (a, b, c) nearest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+[[nodiscard]] Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+
+//! Points spread over a mesh's surface: every triangle gets points in proportion to its area, placed
+//! on a deterministic low-discrepancy pattern (the same mesh gives the same points), about one per
+//! `spacing`² of area; triangles' vertices are included. A point cloud gives its own points.
+[[nodiscard]] std::vector<Vec3> sample_surface(const Mesh& mesh, double spacing);
+
+struct DistanceStats {
+  double mean = 0.0;
+  double rms = 0.0;
+  double p95 = 0.0; //!< 95th percentile
+  double max = 0.0; //!< the one-sided Hausdorff distance
+  std::size_t samples = 0;
+};
+
+struct DistanceOptions {
+  double spacing = 0.5;      //!< sample spacing on each surface, in the meshes' units
+  std::optional<Box> region; //!< only samples inside this box count (the face region), on both sides
+};
+
+//! Both directions and their union (the symmetric figures report the worse of the two maxima).
+struct TwoSidedDistance {
+  DistanceStats a_to_b;
+  DistanceStats b_to_a;
+  DistanceStats both;
+  double diagonal = 0.0; //!< bounding-box diagonal of `a` inside the region, to state errors as a fraction
+};
+
+//! Errors: `InvalidArgument` when a mesh is empty or no sample falls in the region.
+[[nodiscard]] Result<TwoSidedDistance> surface_distance(const Mesh& a, const Mesh& b,
+                                                        const DistanceOptions& options = {});
+
+//! Statistics of a list of distances (sorted copy for the percentile).
+[[nodiscard]] DistanceStats statistics(std::vector<double> distances);
+
+} // namespace pdeface::metrics

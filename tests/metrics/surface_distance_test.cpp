@@ -1,0 +1,147 @@
+#include "pdeface/metrics/surface_distance.hpp"
+
+#include "pdeface/core/sample_face.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace pdeface::metrics {
+namespace {
+
+// The definition: the nearest of a dense set of points of the triangle, refined (used only as a check).
+double brute_distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
+  double best = 1e300;
+  constexpr int n = 400;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; i + j <= n; ++j) {
+      const Vec3 q = a + (b - a) * (i / double(n)) + (c - a) * (j / double(n));
+      best = std::min(best, (q - p).norm());
+    }
+  return best;
+}
+
+TEST(ClosestPoint, EveryVoronoiRegion) {
+  const Vec3 a(0, 0, 0), b(4, 0, 0), c(1, 3, 0);
+  // Inside the face, near each vertex, near each edge, above and below.
+  for (const Vec3& p : {Vec3(1.5, 1, 2), Vec3(-1, -1, 0.5), Vec3(5, -1, 0), Vec3(1, 4, -1), Vec3(2, -1, 0.3),
+                        Vec3(3.5, 2, 1), Vec3(-0.5, 1.5, 0), Vec3(1.4, 0.9, -0.7)}) {
+    const Vec3 q = closest_point_on_triangle(p, a, b, c);
+    EXPECT_NEAR((q - p).norm(), brute_distance_to_triangle(p, a, b, c), 2e-2) << p.transpose();
+    // The result lies on the triangle: its barycentric coordinates are in [0, 1].
+    Eigen::Matrix<double, 3, 2> m;
+    m << b - a, c - a;
+    const Eigen::Vector2d uv = m.colPivHouseholderQr().solve(q - a);
+    EXPECT_GE(uv.minCoeff(), -1e-12);
+    EXPECT_LE(uv.sum(), 1.0 + 1e-12);
+  }
+  EXPECT_EQ(closest_point_on_triangle(Vec3(1.5, 1, 2), a, b, c), Vec3(1.5, 1, 0)); // straight above: exact
+}
+
+TEST(SurfaceDistance, AgreesWithTestingEveryTriangle) {
+  const Mesh face = sample_face({.spacing_mm = 4.0});
+  const SurfaceDistance distance(face);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 p(80 * u(rng), 110 * u(rng), 40 * u(rng));
+    double best = 1e300;
+    for (const Triangle& t : face.triangles)
+      best = std::min(
+          best,
+          (closest_point_on_triangle(p, face.positions[t[0]], face.positions[t[1]], face.positions[t[2]]) - p)
+              .norm());
+    const auto n = distance.nearest(p);
+    EXPECT_NEAR(n.distance, best, 1e-12 * (1.0 + best));
+    EXPECT_NEAR((n.point - p).norm(), n.distance, 1e-12 * (1.0 + best));
+  }
+}
+
+TEST(SurfaceDistance, PointCloudsMeasureToTheirPoints) {
+  Mesh cloud;
+  cloud.positions = {{0, 0, 0}, {10, 0, 0}};
+  const SurfaceDistance distance(cloud);
+  EXPECT_DOUBLE_EQ(distance.distance(Vec3(3, 4, 0)), 5.0);
+  EXPECT_THROW(SurfaceDistance(Mesh{}), std::invalid_argument);
+}
+
+Mesh grid(int n, double step, double z) {
+  Mesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i)
+      m.positions.emplace_back(i * step, j * step, z);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const auto v = static_cast<std::uint32_t>(j * (n + 1) + i);
+      const auto w = static_cast<std::uint32_t>(n + 1);
+      m.triangles.push_back({v, v + 1, v + w + 1});
+      m.triangles.push_back({v, v + w + 1, v + w});
+    }
+  return m;
+}
+
+TEST(SurfaceDistanceTwoSided, ParallelPlanesAreTheirGapApart) {
+  const Mesh a = grid(20, 1.0, 0.0), b = grid(20, 1.0, 0.25);
+  auto d = surface_distance(a, b, {.spacing = 0.3});
+  ASSERT_TRUE(d.ok()) << d.error().to_string();
+  for (const DistanceStats& s : {d->a_to_b, d->b_to_a, d->both}) {
+    EXPECT_NEAR(s.mean, 0.25, 1e-12);
+    EXPECT_NEAR(s.rms, 0.25, 1e-12);
+    EXPECT_NEAR(s.p95, 0.25, 1e-12);
+    EXPECT_NEAR(s.max, 0.25, 1e-12);
+    EXPECT_GT(s.samples, 4000U); // 400 mm² at 0.3 mm spacing
+  }
+  EXPECT_NEAR(d->diagonal, std::sqrt(800.0), 1e-12);
+  auto self = surface_distance(a, a);
+  ASSERT_TRUE(self.ok());
+  EXPECT_LT(self->both.max, 1e-12);
+}
+
+TEST(SurfaceDistanceTwoSided, RegionAndOneSidedExcess) {
+  // b covers only half of a: from a, the uncovered half is far; from b, everything is close.
+  const Mesh a = grid(20, 1.0, 0.0);
+  Mesh b = grid(10, 1.0, 0.0);
+  auto d = surface_distance(a, b, {.spacing = 0.5});
+  ASSERT_TRUE(d.ok());
+  EXPECT_LT(d->b_to_a.max, 1e-12);
+  EXPECT_NEAR(d->a_to_b.max, std::sqrt(200.0), 1e-9); // the far corner (20, 20) to (10, 10)
+  // Restricted to the part both cover, they agree.
+  Box region;
+  region.min = Vec3(-1, -1, -1);
+  region.max = Vec3(10, 10, 1);
+  auto r = surface_distance(a, b, {.spacing = 0.5, .region = region});
+  ASSERT_TRUE(r.ok());
+  EXPECT_LT(r->both.max, 1e-12);
+  Box nowhere;
+  nowhere.min = Vec3(100, 100, 100);
+  nowhere.max = Vec3(101, 101, 101);
+  EXPECT_EQ(surface_distance(a, b, {.region = nowhere}).error().code, ErrorCode::InvalidArgument);
+}
+
+TEST(Statistics, KnownValues) {
+  std::vector<double> d(100);
+  for (int i = 0; i < 100; ++i)
+    d[static_cast<std::size_t>(i)] = i + 1; // 1..100
+  const DistanceStats s = statistics(d);
+  EXPECT_DOUBLE_EQ(s.mean, 50.5);
+  EXPECT_DOUBLE_EQ(s.rms, std::sqrt(338350.0 / 100.0));
+  EXPECT_DOUBLE_EQ(s.p95, 95.0);
+  EXPECT_DOUBLE_EQ(s.max, 100.0);
+  EXPECT_EQ(s.samples, 100U);
+}
+
+TEST(Sampling, DenseEvenAndDeterministic) {
+  const Mesh a = grid(10, 1.0, 0.0);
+  const auto p = sample_surface(a, 0.2);
+  EXPECT_EQ(p, sample_surface(a, 0.2));
+  EXPECT_NEAR(static_cast<double>(p.size() - a.vertex_count()), 100.0 / 0.04,
+              200.0 * 1.0); // ~ area / spacing²
+  for (const Vec3& q : p) {
+    EXPECT_GE(q.x(), 0.0);
+    EXPECT_LE(q.x(), 10.0);
+    EXPECT_EQ(q.z(), 0.0);
+  }
+}
+
+} // namespace
+} // namespace pdeface::metrics
