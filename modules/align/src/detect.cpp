@@ -10,8 +10,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <numbers>
 #include <numeric>
 #include <unordered_map>
@@ -496,10 +494,6 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     // "nose": the chin, or the nose seen askew, but not a symmetric face around it).
     const std::optional<Candidate> refined =
         around_the_nose({plane, mirror_rms(mirror_of(plane), fit_points, coarse), *nose});
-    if (std::getenv("PDEFACE_DEBUG"))
-      std::fprintf(stderr, "seed (%.2f %.2f %.2f) -> plane (%.3f %.3f %.3f) nose %.1f, central rms %.2f\n",
-                   seed.normal.x(), seed.normal.y(), seed.normal.z(), plane.normal.x(), plane.normal.y(),
-                   plane.normal.z(), nose->prominence, refined ? refined->rms : -1.0);
     if (refined && (!chosen || refined->rms < chosen->rms)) chosen = refined;
   }
   if (!chosen)
@@ -512,15 +506,6 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   if (const std::optional<Candidate> again = around_the_nose(*chosen))
     chosen = again; // around the better nose
 
-  if (std::getenv("PDEFACE_DEBUG")) {
-    const Nose& dn = chosen->nose;
-    std::fprintf(stderr,
-                 "plane n=(%.3f %.3f %.3f) d=%.2f rms=%.2f tip=(%.1f %.1f %.1f) fwd=(%.2f %.2f %.2f) "
-                 "up=(%.2f %.2f %.2f) prom=%.1f spacing=%.2f\n",
-                 chosen->plane.normal.x(), chosen->plane.normal.y(), chosen->plane.normal.z(),
-                 chosen->plane.offset, chosen->rms, dn.tip.x(), dn.tip.y(), dn.tip.z(), dn.forward.x(),
-                 dn.forward.y(), dn.forward.z(), dn.up.x(), dn.up.y(), dn.up.z(), dn.prominence, spacing);
-  }
   // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
   // Search the landmarks in it, fit the frame to them, and search again in the better frame. The nose's
   // shape says which way is up, but not always clearly (a short nose, a low-resolution scan): both ways
