@@ -403,6 +403,149 @@ Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const Fac
   return out;
 }
 
+namespace {
+
+// The scan prepared for the search: in millimetres, loose fragments gone, with its k-d trees.
+struct Scene {
+  Mesh mesh; // mm
+  std::optional<PointIndex> index;
+  double spacing = 0.0;     // median distance between neighbouring points
+  std::vector<Vec3> sample; // one point per voxel of DetectOptions::sample_mm
+  std::optional<PointIndex> coarse;
+  std::vector<Vec3> probe;      // 300 of the sample, to score candidate planes
+  std::vector<Vec3> fit_points; // 1000 of the sample, to refine them
+};
+
+Scene prepare(const Mesh& scan, double mm, const DetectOptions& options) {
+  Scene s;
+  s.mesh = drop_small_components(scan, options.min_fragment);
+  for (Vec3& p : s.mesh.positions)
+    p *= mm;
+  s.index.emplace(s.mesh.positions);
+  s.spacing = median_spacing(s.mesh.positions, *s.index);
+  s.sample = voxel_subsample(s.mesh.positions, std::max(options.sample_mm, s.spacing));
+  s.coarse.emplace(s.sample);
+  s.probe = thin(s.sample, 300);
+  s.fit_points = thin(s.sample, 1000);
+  return s;
+}
+
+// Symmetry plane candidates through the centroid in every direction, scored on the probe against the
+// subsample (nearest-neighbour queries dominate the cost); the best 16 distinct directions get a few
+// registration steps (a plane through the centroid may be offset from the face's, e.g. on a scan cut
+// asymmetrically); the best 4 of those are the seeds.
+std::vector<Plane> symmetry_seeds(const Scene& s, int directions) {
+  Vec3 centroid = Vec3::Zero();
+  for (const Vec3& p : s.sample)
+    centroid += p;
+  centroid /= static_cast<double>(s.sample.size());
+
+  std::vector<std::pair<double, Vec3>> scored;
+  for (const Vec3& n : hemisphere(directions))
+    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), s.probe, *s.coarse), n);
+  std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
+
+  const double distinct = std::cos(0.17); // 10 degrees
+  std::vector<std::pair<double, Plane>> rough;
+  std::vector<Vec3> tried;
+  for (const auto& [rms, n] : scored) {
+    if (tried.size() == 16) break;
+    if (std::ranges::any_of(tried, [&](const Vec3& t) { return std::abs(t.dot(n)) > distinct; })) continue;
+    tried.push_back(n);
+    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), s.probe, s.sample, *s.coarse, 0.7, 6);
+    const Plane plane = plane_of(m, s.probe);
+    rough.emplace_back(mirror_rms(mirror_of(plane), s.probe, *s.coarse), plane);
+  }
+  std::ranges::sort(rough, {}, &std::pair<double, Plane>::first);
+  std::vector<Plane> seeds;
+  for (const auto& [rms, plane] : rough) {
+    if (seeds.size() == 4) break;
+    if (std::ranges::none_of(seeds,
+                             [&](const Plane& q) { return std::abs(q.normal.dot(plane.normal)) > distinct; }))
+      seeds.push_back(plane);
+  }
+  return seeds;
+}
+
+struct Candidate {
+  Plane plane;
+  double rms; // mirror RMS around the nose
+  Nose nose;
+};
+
+// The scan's outline need not be symmetric (a cut, hair, an ear missing), and a face is close to a
+// cylinder, whose symmetry planes are many: a plane is judged on the central face only, 70 mm around its
+// nose, where a face is most symmetric and a scan most complete, keeping nearly every pair so that the
+// nose and the eyes (which show the plane's yaw) count.
+std::optional<Candidate> around_the_nose(const Scene& s, const Candidate& c, double slab) {
+  std::vector<Vec3> central;
+  for (const Vec3& p : s.sample)
+    if ((p - c.nose.tip).norm() < 70.0) central.push_back(p);
+  if (central.size() < 50) return std::nullopt;
+  const Mirror m = refine(mirror_of(c.plane), central, s.mesh.positions, *s.index, 0.95);
+  const Plane plane = plane_of(m, central);
+  const std::optional<Nose> nose = find_nose(plane, s.mesh.positions, slab);
+  if (!nose || nose->prominence < kMinNoseProminence) return std::nullopt;
+  return Candidate{plane, mirror_rms(mirror_of(plane), central, *s.index), *nose};
+}
+
+// Each seed refined, its nose found, judged around its nose; the plane most symmetric there wins (a
+// wrong plane through a face can show a bigger "nose": the chin, or the nose seen askew, but not a
+// symmetric face around it). Also reports the most prominent "nose" seen, for the error message.
+std::optional<Candidate> choose_plane(const Scene& s, std::span<const Plane> seeds, double& best_prominence) {
+  const double slab = std::max(1.0, 0.6 * s.spacing);
+  std::optional<Candidate> chosen;
+  for (const Plane& seed : seeds) {
+    const Plane plane = plane_of(refine(mirror_of(seed), s.fit_points, s.sample, *s.coarse), s.fit_points);
+    const std::optional<Nose> nose = find_nose(plane, s.mesh.positions, slab);
+    if (!nose) continue;
+    best_prominence = std::max(best_prominence, nose->prominence);
+    if (nose->prominence < kMinNoseProminence) continue;
+    const std::optional<Candidate> refined =
+        around_the_nose(s, {plane, mirror_rms(mirror_of(plane), s.fit_points, *s.coarse), *nose}, slab);
+    if (refined && (!chosen || refined->rms < chosen->rms)) chosen = refined;
+  }
+  if (chosen)
+    if (const std::optional<Candidate> again = around_the_nose(s, *chosen, slab)) chosen = again;
+  return chosen;
+}
+
+struct Fitted {
+  Landmarks found; // mm
+  double fit_rms = std::numeric_limits<double>::infinity();
+};
+
+// A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
+// The landmarks are searched in it, the frame fitted to them, and again until the frame stops moving (a
+// fixed point does not depend on where the search started). The nose's shape says which way is up, but
+// not always clearly (a short nose, a low-resolution scan): both ways are tried, and the one whose
+// landmarks sit best on an average face wins.
+Fitted fit_landmarks(const Scene& s, const Nose& nose) {
+  std::optional<Fitted> best;
+  for (const Vec3& up : {nose.up, Vec3(-nose.up)}) {
+    Eigen::Matrix3d r;
+    r.row(1) = up.transpose();
+    r.row(2) = nose.forward.transpose();
+    r.row(0) = up.cross(nose.forward).transpose();
+    Rigid frame{r, -r * nose.tip};
+    Fitted attempt;
+    for (int round = 0; round < 6; ++round) {
+      attempt.found = search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame);
+      Result<FaceFrame> fit = frame_from_landmarks(attempt.found, Units::Millimetres);
+      if (!fit) break;
+      attempt.fit_rms = fit_rms(attempt.found, *fit);
+      const double turn = Eigen::AngleAxisd(fit->rotation * frame.rotation.transpose()).angle();
+      const double shift = (fit->translation - frame.translation).norm();
+      frame = {fit->rotation, fit->translation};
+      if (round > 0 && turn < 1e-4 && shift < 0.01) break; // 0.006°, 10 µm
+    }
+    if (!best || attempt.fit_rms < best->fit_rms) best = std::move(attempt);
+  }
+  return *best;
+}
+
+} // namespace
+
 Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
   const std::string source = scan.name;
   if (scan.vertex_count() < 100)
@@ -411,91 +554,11 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
                       source);
   const Units units = detect_units(scan);
   const double mm = millimetres_per(units);
+  const Scene scene = prepare(scan, mm, options);
 
-  // Work in millimetres, without loose fragments.
-  Mesh work = drop_small_components(scan, options.min_fragment);
-  for (Vec3& p : work.positions)
-    p *= mm;
-  const std::vector<Vec3>& points = work.positions;
-  const PointIndex index(points);
-  const double spacing = median_spacing(points, index);
-  const std::vector<Vec3> sample = voxel_subsample(points, std::max(options.sample_mm, spacing));
-  // The search over candidate planes matches against the subsample (nearest-neighbour queries dominate
-  // the cost); the final refinement around the nose against every point.
-  const PointIndex coarse(sample);
-  const std::vector<Vec3> probe = thin(sample, 300);
-  const std::vector<Vec3> fit_points = thin(sample, 1000);
-
-  Vec3 centroid = Vec3::Zero();
-  for (const Vec3& p : sample)
-    centroid += p;
-  centroid /= static_cast<double>(sample.size());
-
-  // Symmetry plane candidates through the centroid in every direction; the best few refined by ICP.
-  std::vector<std::pair<double, Vec3>> scored;
-  for (const Vec3& n : hemisphere(options.directions))
-    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), probe, coarse), n);
-  std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
-  // The best 16 distinct directions get a few registration steps on the probe (a plane through the
-  // centroid may be offset from the face's, e.g. on a scan cut asymmetrically); the best 4 of those
-  // seed the full refinement.
-  std::vector<std::pair<double, Plane>> rough;
-  std::vector<Vec3> tried;
-  for (const auto& [rms, n] : scored) {
-    if (tried.size() == 16) break;
-    if (std::ranges::any_of(tried, [&](const Vec3& s) { return std::abs(s.dot(n)) > std::cos(0.17); }))
-      continue;
-    tried.push_back(n);
-    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), probe, sample, coarse, 0.7, 6);
-    const Plane plane = plane_of(m, probe);
-    rough.emplace_back(mirror_rms(mirror_of(plane), probe, coarse), plane);
-  }
-  std::ranges::sort(rough, {}, &std::pair<double, Plane>::first);
-  std::vector<Plane> seeds;
-  for (const auto& [rms, plane] : rough) {
-    if (seeds.size() == 4) break;
-    if (std::ranges::none_of(
-            seeds, [&](const Plane& q) { return std::abs(q.normal.dot(plane.normal)) > std::cos(0.17); }))
-      seeds.push_back(plane);
-  }
-
-  struct Candidate {
-    Plane plane;
-    double rms;
-    Nose nose;
-  };
-  // The scan's outline need not be symmetric (a cut, hair, an ear missing), and a face is close to a
-  // cylinder, whose symmetry planes are many: a plane is judged on the central face only, 70 mm around
-  // its nose, where a face is most symmetric and a scan most complete, keeping nearly every pair so that
-  // the nose and the eyes (which show the plane's yaw) count.
-  const double slab = std::max(1.0, 0.6 * spacing);
-  auto around_the_nose = [&](const Candidate& c) -> std::optional<Candidate> {
-    std::vector<Vec3> central;
-    for (const Vec3& p : sample)
-      if ((p - c.nose.tip).norm() < 70.0) central.push_back(p);
-    if (central.size() < 50) return std::nullopt;
-    const Mirror m = refine(mirror_of(c.plane), central, points, index, 0.95);
-    const Plane plane = plane_of(m, central);
-    const std::optional<Nose> nose = find_nose(plane, points, slab);
-    if (!nose || nose->prominence < kMinNoseProminence) return std::nullopt;
-    return Candidate{plane, mirror_rms(mirror_of(plane), central, index), *nose};
-  };
-
-  std::optional<Candidate> chosen;
   double best_prominence = 0.0;
-  for (const Plane& seed : seeds) {
-    const Mirror m = refine(mirror_of(seed), fit_points, sample, coarse);
-    const Plane plane = plane_of(m, fit_points);
-    const std::optional<Nose> nose = find_nose(plane, points, slab);
-    if (!nose) continue;
-    best_prominence = std::max(best_prominence, nose->prominence);
-    if (nose->prominence < kMinNoseProminence) continue;
-    // The plane most symmetric around its nose wins (a wrong plane through a face can show a bigger
-    // "nose": the chin, or the nose seen askew, but not a symmetric face around it).
-    const std::optional<Candidate> refined =
-        around_the_nose({plane, mirror_rms(mirror_of(plane), fit_points, coarse), *nose});
-    if (refined && (!chosen || refined->rms < chosen->rms)) chosen = refined;
-  }
+  const std::optional<Candidate> chosen =
+      choose_plane(scene, symmetry_seeds(scene, options.directions), best_prominence);
   if (!chosen)
     return make_error(
         ErrorCode::NoFace,
@@ -503,46 +566,12 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
                     "a nose stands at least {:.0f} mm out of its profile)",
                     best_prominence, kMinNoseProminence),
         source);
-  if (const std::optional<Candidate> again = around_the_nose(*chosen))
-    chosen = again; // around the better nose
 
-  // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
-  // Search the landmarks in it, fit the frame to them, and search again in the better frame. The nose's
-  // shape says which way is up, but not always clearly (a short nose, a low-resolution scan): both ways
-  // are tried, and the one whose landmarks sit best on an average face wins.
-  const Nose& nose = chosen->nose;
-  struct Attempt {
-    Landmarks found; // mm
-    FaceFrame frame; // from mm
-    double fit_rms = std::numeric_limits<double>::infinity();
-  };
-  std::optional<Attempt> best;
-  for (const Vec3& up : {nose.up, Vec3(-nose.up)}) {
-    Eigen::Matrix3d r;
-    r.row(1) = up.transpose();
-    r.row(2) = nose.forward.transpose();
-    r.row(0) = up.cross(nose.forward).transpose();
-    Rigid frame_mm{r, -r * nose.tip};
-    Attempt attempt;
-    // Until the frame stops moving (a fixed point does not depend on where the search started).
-    for (int round = 0; round < 6; ++round) {
-      attempt.found = search_landmarks(points, work.triangles, spacing, frame_mm);
-      Result<FaceFrame> fit = frame_from_landmarks(attempt.found, Units::Millimetres);
-      if (!fit) break;
-      attempt.frame = *fit;
-      attempt.fit_rms = fit_rms(attempt.found, *fit);
-      const double turn = Eigen::AngleAxisd(fit->rotation * frame_mm.rotation.transpose()).angle();
-      const double shift = (fit->translation - frame_mm.translation).norm();
-      frame_mm = {fit->rotation, fit->translation};
-      if (round > 0 && turn < 1e-4 && shift < 0.01) break; // 0.006°, 10 µm
-    }
-    if (!best || attempt.fit_rms < best->fit_rms) best = std::move(attempt);
-  }
-  Landmarks found = best->found;
+  const Fitted fitted = fit_landmarks(scene, chosen->nose);
+  Landmarks found = fitted.found;
   for (auto& p : found.points)
     if (p) *p /= mm;
   found.units = units;
-
   Result<FaceFrame> frame = frame_from_landmarks(found, units);
   if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, source);
 
@@ -551,18 +580,18 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   out.frame = *frame;
   out.symmetry = {chosen->plane.normal, chosen->plane.offset / mm};
   out.symmetry_rms_mm = chosen->rms;
-  out.nose_prominence_mm = nose.prominence;
-  out.fit_rms_mm = best->fit_rms;
+  out.nose_prominence_mm = chosen->nose.prominence;
+  out.fit_rms_mm = fitted.fit_rms;
   const double coverage = static_cast<double>(found.count()) / kLandmarkCount;
   out.confidence = std::min({clamp01(1.0 - (out.symmetry_rms_mm - 2.0) / 6.0),
-                             clamp01((nose.prominence - kMinNoseProminence) / 12.0),
+                             clamp01((out.nose_prominence_mm - kMinNoseProminence) / 12.0),
                              clamp01(1.0 - (out.fit_rms_mm - 8.0) / 14.0), coverage});
   if (out.confidence < options.min_confidence)
     return make_error(
         ErrorCode::NoFace,
         fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
                     "landmark fit {:.1f} mm, {} of {} landmarks)",
-                    out.confidence, options.min_confidence, out.symmetry_rms_mm, nose.prominence,
+                    out.confidence, options.min_confidence, out.symmetry_rms_mm, out.nose_prominence_mm,
                     out.fit_rms_mm, found.count(), kLandmarkCount),
         source);
   return out;
