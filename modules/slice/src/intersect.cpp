@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -81,117 +82,181 @@ private:
   Vec3 n_;
 };
 
-// Chains segments into polylines through shared keys: open chains from their free ends first, then
-// the closed loops that remain.
+// Chains segments into polylines through shared keys: open chains from their free ends first, then the
+// closed loops that remain. Segment ends are sorted by key; equal keys pair up ends (two per key on a
+// manifold mesh; more are paired in order, as at a vertex where the surface touches itself).
 std::vector<Polyline> chain(std::vector<Segment> segments) {
-  for (Segment& s : segments)
-    if (s.b.key < s.a.key) std::swap(s.a, s.b);
-  std::sort(segments.begin(), segments.end(), [](const Segment& l, const Segment& r) {
-    return l.a.key != r.a.key ? l.a.key < r.a.key : l.b.key < r.b.key;
+  // An edge lying in the plane comes from both its triangles: keep it once.
+  const auto in_plane = std::partition(segments.begin(), segments.end(), [](const Segment& s) {
+    return !(s.a.key == (s.a.key >> 32U | s.a.key << 32U) && s.b.key == (s.b.key >> 32U | s.b.key << 32U));
   });
-  segments.erase(std::unique(segments.begin(), segments.end(),
-                             [](const Segment& l, const Segment& r) {
-                               return l.a.key == r.a.key && l.b.key == r.b.key;
-                             }),
-                 segments.end());
-
-  // Nodes by key, and each node's incident segments (compressed rows).
-  std::vector<Node> nodes;
-  nodes.reserve(2 * segments.size());
-  for (const Segment& s : segments) {
-    nodes.push_back(s.a);
-    nodes.push_back(s.b);
+  if (in_plane != segments.end()) {
+    for (auto i = in_plane; i != segments.end(); ++i)
+      if (i->b.key < i->a.key) std::swap(i->a, i->b);
+    auto by_keys = [](const Segment& l, const Segment& r) {
+      return l.a.key != r.a.key ? l.a.key < r.a.key : l.b.key < r.b.key;
+    };
+    std::sort(in_plane, segments.end(), by_keys);
+    segments.erase(std::unique(in_plane, segments.end(),
+                               [](const Segment& l, const Segment& r) {
+                                 return l.a.key == r.a.key && l.b.key == r.b.key;
+                               }),
+                   segments.end());
   }
-  auto by_key = [](const Node& l, const Node& r) { return l.key < r.key; };
-  std::sort(nodes.begin(), nodes.end(), by_key);
-  nodes.erase(
-      std::unique(nodes.begin(), nodes.end(), [](const Node& l, const Node& r) { return l.key == r.key; }),
-      nodes.end());
-  auto index_of = [&](Key key) {
-    return static_cast<std::size_t>(std::lower_bound(nodes.begin(), nodes.end(), Node{key, {}}, by_key) -
-                                    nodes.begin());
+
+  struct End {
+    Key key;
+    std::uint32_t index; // 2 · segment + side
   };
-  std::vector<std::array<std::size_t, 2>> ends(segments.size());
-  std::vector<std::size_t> start(nodes.size() + 1, 0);
-  for (std::size_t i = 0; i < segments.size(); ++i) {
-    ends[i] = {index_of(segments[i].a.key), index_of(segments[i].b.key)};
-    ++start[ends[i][0] + 1];
-    ++start[ends[i][1] + 1];
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  const auto count = static_cast<std::uint32_t>(segments.size());
+  std::vector<End> ends;
+  ends.reserve(2 * segments.size());
+  for (std::uint32_t i = 0; i < count; ++i) {
+    ends.push_back({segments[i].a.key, 2 * i});
+    ends.push_back({segments[i].b.key, 2 * i + 1});
   }
-  std::partial_sum(start.begin(), start.end(), start.begin());
-  std::vector<std::size_t> incident(start.back());
-  std::vector<std::size_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < segments.size(); ++i)
-    for (std::size_t e : ends[i])
-      incident[fill[e]++] = i;
+  std::sort(ends.begin(), ends.end(),
+            [](const End& l, const End& r) { return l.key != r.key ? l.key < r.key : l.index < r.index; });
+  std::vector<std::uint32_t> partner(ends.size(), kNone);
+  for (std::size_t i = 0; i + 1 < ends.size(); ++i)
+    if (ends[i].key == ends[i + 1].key) {
+      partner[ends[i].index] = ends[i + 1].index;
+      partner[ends[i + 1].index] = ends[i].index;
+      ++i;
+    }
 
+  auto point = [&](std::uint32_t end) -> const Vec3& {
+    const Segment& s = segments[end / 2];
+    return end % 2 == 0 ? s.a.point : s.b.point;
+  };
   std::vector<bool> used(segments.size(), false);
-  auto next_segment = [&](std::size_t node) -> std::optional<std::size_t> {
-    for (std::size_t k = start[node]; k < start[node + 1]; ++k)
-      if (!used[incident[k]]) return incident[k];
-    return std::nullopt;
-  };
   std::vector<Polyline> out;
-  auto walk = [&](std::size_t first) {
+  // Walks from the end `start` through its segment and on through partners; true if it came back round.
+  auto walk = [&](std::uint32_t start) {
     Polyline line;
-    line.points.push_back(nodes[first].point);
-    std::size_t at = first;
-    while (const auto s = next_segment(at)) {
-      used[*s] = true;
-      at = ends[*s][0] == at ? ends[*s][1] : ends[*s][0];
-      if (at == first) {
+    line.points.push_back(point(start));
+    for (std::uint32_t at = start;;) {
+      used[at / 2] = true;
+      const std::uint32_t exit = at ^ 1U;
+      const std::uint32_t next = partner[exit];
+      if (next == kNone) {
+        line.points.push_back(point(exit));
+        break;
+      }
+      if (next == start) {
         line.closed = true;
         break;
       }
-      line.points.push_back(nodes[at].point);
+      if (used[next / 2]) {
+        line.points.push_back(point(exit));
+        break;
+      }
+      line.points.push_back(point(exit));
+      at = next;
     }
     out.push_back(std::move(line));
   };
-  // Odd degree: the free end of an open chain (or a junction where the surface is not manifold).
-  for (std::size_t n = 0; n < nodes.size(); ++n)
-    if ((start[n + 1] - start[n]) % 2 == 1 && next_segment(n)) walk(n);
-  for (std::size_t n = 0; n < nodes.size(); ++n)
-    while (next_segment(n))
-      walk(n);
+  for (std::uint32_t e = 0; e < 2 * count; ++e)
+    if (partner[e] == kNone && !used[e / 2]) walk(e);
+  for (std::uint32_t i = 0; i < count; ++i)
+    if (!used[i]) walk(2 * i);
   return out;
 }
 
 } // namespace
 
-std::vector<std::vector<Polyline>> intersect(const Mesh& mesh, const Vec3& normal,
-                                             std::span<const double> offsets) {
-  if (std::abs(normal.norm() - 1.0) > 1e-9) throw std::invalid_argument("slice::intersect: normal not unit");
-  for (double d : offsets)
-    if (!std::isfinite(d)) throw std::invalid_argument("slice::intersect: offset not finite");
-
-  std::vector<double> heights(mesh.positions.size());
-  for (std::size_t i = 0; i < heights.size(); ++i)
-    heights[i] = normal.dot(mesh.positions[i]);
-
-  // Planes in order of offset, so that a triangle finds the planes it spans by two binary searches.
-  std::vector<std::size_t> order(offsets.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return offsets[a] < offsets[b]; });
-  std::vector<double> sorted(offsets.size());
-  for (std::size_t j = 0; j < order.size(); ++j)
-    sorted[j] = offsets[order[j]];
-
-  const Cutter cutter(mesh, heights, normal);
-  std::vector<std::vector<Segment>> segments(offsets.size());
-  for (const Triangle& t : mesh.triangles) {
-    const auto [lo, hi] = std::minmax({heights[t[0]], heights[t[1]], heights[t[2]]});
-    for (auto j = std::lower_bound(sorted.begin(), sorted.end(), lo); j != sorted.end() && *j <= hi; ++j)
-      cutter.cut(t, *j, segments[static_cast<std::size_t>(j - sorted.begin())]);
+std::vector<std::vector<Polyline>> intersect(const Mesh& mesh, std::span<const Plane> planes) {
+  for (const Plane& plane : planes) {
+    if (std::abs(plane.normal.norm() - 1.0) > 1e-9)
+      throw std::invalid_argument("slice::intersect: normal not unit");
+    if (!std::isfinite(plane.offset)) throw std::invalid_argument("slice::intersect: offset not finite");
   }
-  std::vector<std::vector<Polyline>> out(offsets.size());
-  for (std::size_t j = 0; j < order.size(); ++j)
-    out[order[j]] = chain(std::move(segments[j]));
+  // Planes sharing a normal form a family: one height per vertex, and the offsets in order, so that a
+  // triangle finds the planes of the family it spans by a binary search.
+  struct Family {
+    Vec3 normal;
+    std::vector<double> heights;
+    std::vector<double> offsets;     // ascending
+    std::vector<std::size_t> planes; // index into `planes`, in the order of `offsets`
+    // The first plane at or above the start of each of a few uniform bins over the offsets: a triangle
+    // finds the planes it spans without a branchy binary search (most span none).
+    std::vector<std::size_t> first;
+    double start = 0.0, inverse_bin = 0.0;
+
+    void index() {
+      start = offsets.front();
+      const double span = offsets.back() - start;
+      const std::size_t bins = 4 * offsets.size() + 1;
+      inverse_bin = span > 0.0 ? static_cast<double>(bins - 1) / span : 0.0;
+      first.resize(bins + 1);
+      for (std::size_t b = 0, j = 0; b <= bins; ++b) {
+        const double at = start + static_cast<double>(b) / (inverse_bin > 0.0 ? inverse_bin : 1.0);
+        while (j < offsets.size() && offsets[j] < at)
+          ++j;
+        first[b] = j;
+      }
+    }
+    // The first plane with offset >= lo.
+    [[nodiscard]] std::size_t first_at_or_above(double lo) const {
+      if (!(lo > start)) return 0;
+      const double bin = (lo - start) * inverse_bin;
+      std::size_t j = bin >= static_cast<double>(first.size() - 1) ? offsets.size()
+                                                                   : first[static_cast<std::size_t>(bin)];
+      while (j < offsets.size() && offsets[j] < lo)
+        ++j;
+      return j;
+    }
+  };
+  std::vector<Family> families;
+  for (std::size_t j = 0; j < planes.size(); ++j) {
+    auto f = std::find_if(families.begin(), families.end(),
+                          [&](const Family& g) { return g.normal == planes[j].normal; });
+    if (f == families.end()) f = families.insert(families.end(), Family{planes[j].normal, {}, {}, {}});
+    f->planes.push_back(j);
+  }
+  for (Family& f : families) {
+    std::sort(f.planes.begin(), f.planes.end(),
+              [&](std::size_t a, std::size_t b) { return planes[a].offset < planes[b].offset; });
+    for (std::size_t j : f.planes)
+      f.offsets.push_back(planes[j].offset);
+    f.index();
+    f.heights.resize(mesh.positions.size());
+    for (std::size_t i = 0; i < f.heights.size(); ++i)
+      f.heights[i] = f.normal.dot(mesh.positions[i]);
+  }
+
+  std::vector<Cutter> cutters;
+  for (const Family& f : families)
+    cutters.emplace_back(mesh, f.heights, f.normal);
+  std::vector<std::vector<Segment>> segments(planes.size());
+  for (auto& s : segments)
+    s.reserve(256);
+  for (const Triangle& t : mesh.triangles)
+    for (std::size_t k = 0; k < families.size(); ++k) {
+      const Family& f = families[k];
+      const double a = f.heights[t[0]], b = f.heights[t[1]], c = f.heights[t[2]];
+      const double lo = std::min(a, std::min(b, c)), hi = std::max(a, std::max(b, c));
+      for (std::size_t j = f.first_at_or_above(lo); j < f.offsets.size() && f.offsets[j] <= hi; ++j)
+        cutters[k].cut(t, f.offsets[j], segments[f.planes[j]]);
+    }
+  std::vector<std::vector<Polyline>> out(planes.size());
+  for (std::size_t j = 0; j < planes.size(); ++j)
+    out[j] = chain(std::move(segments[j]));
   return out;
 }
 
+std::vector<std::vector<Polyline>> intersect(const Mesh& mesh, const Vec3& normal,
+                                             std::span<const double> offsets) {
+  std::vector<Plane> planes;
+  planes.reserve(offsets.size());
+  for (double d : offsets)
+    planes.push_back({normal, d});
+  return intersect(mesh, planes);
+}
+
 std::vector<Polyline> intersect(const Mesh& mesh, const Plane& plane) {
-  return std::move(intersect(mesh, plane.normal, std::span<const double>(&plane.offset, 1)).front());
+  return std::move(intersect(mesh, std::span<const Plane>(&plane, 1)).front());
 }
 
 } // namespace pdeface::slice

@@ -55,14 +55,14 @@ std::string_view to_string(PlaneRole role) noexcept {
   return role == PlaneRole::Joint ? "joint" : "intermediate";
 }
 
-Result<double> central_width(const Mesh& canonical, const align::Landmarks& landmarks,
-                             const SectionOptions& section) {
-  if (auto ok = require(landmarks, {Landmark::EyeOuterLeft, Landmark::EyeOuterRight}); !ok) return ok.error();
-  const Vec3 left = *landmarks[Landmark::EyeOuterLeft], right = *landmarks[Landmark::EyeOuterRight];
-  const double height = 0.5 * (left.y() + right.y());
+namespace {
+
+// W from the eye line's section (ascending x, seen from +z): its length between the outer eye corners.
+Result<double> width_along(const Section& eye_line, const align::Landmarks& landmarks, double height,
+                           const SectionOptions& section) {
   const ProfileAxes axes{Vec3::UnitX(), Vec3::UnitZ()};
-  const std::vector<Section> cut = sections(canonical, Vec3::UnitY(), std::span(&height, 1), axes, section);
-  Result<Profile> line = clip(cut.front(), axes, right.x(), left.x(), section, "x");
+  Result<Profile> line = clip(eye_line, axes, landmarks[Landmark::EyeOuterRight]->x(),
+                              landmarks[Landmark::EyeOuterLeft]->x(), section, "x");
   if (!line)
     return make_error(ErrorCode::NoFace,
                       fmt::format("the cross-section through the outer eye corners (y = {:.1f} "
@@ -72,6 +72,21 @@ Result<double> central_width(const Mesh& canonical, const align::Landmarks& land
   for (std::size_t i = 1; i < line->points.size(); ++i)
     length += (line->points[i] - line->points[i - 1]).norm();
   return length;
+}
+
+double eye_line_height(const align::Landmarks& l) {
+  return 0.5 * (l[Landmark::EyeOuterLeft]->y() + l[Landmark::EyeOuterRight]->y());
+}
+
+} // namespace
+
+Result<double> central_width(const Mesh& canonical, const align::Landmarks& landmarks,
+                             const SectionOptions& section) {
+  if (auto ok = require(landmarks, {Landmark::EyeOuterLeft, Landmark::EyeOuterRight}); !ok) return ok.error();
+  const double height = eye_line_height(landmarks);
+  const std::vector<Section> cut =
+      sections(canonical, Vec3::UnitY(), std::span(&height, 1), {Vec3::UnitX(), Vec3::UnitZ()}, section);
+  return width_along(cut.front(), landmarks, height, section);
 }
 
 Result<PlaneLayout> profile_planes(const Mesh& canonical, const align::Landmarks& landmarks,
@@ -98,41 +113,31 @@ Result<PlaneLayout> profile_planes(const Mesh& canonical, const align::Landmarks
     return make_error(ErrorCode::InvalidArgument, fmt::format("empty height range [{:.1f}, {:.1f}] mm",
                                                               layout.target[0], layout.target[1]));
 
-  Result<double> width = central_width(canonical, landmarks, section);
+  // One pass over the scan for three horizontal sections: the eye line (for W) and the two heights the
+  // face border must reach (the height range less the slack at each end, for ragged outlines).
+  layout.eye_height_mm = eye_line_height(landmarks);
+  const std::array<double, 3> heights{layout.eye_height_mm, layout.target[0] + options.border_slack_mm,
+                                      layout.target[1] - options.border_slack_mm};
+  const std::vector<Section> cuts =
+      sections(canonical, Vec3::UnitY(), heights, {Vec3::UnitX(), Vec3::UnitZ()}, section);
+  Result<double> width = width_along(cuts[0], landmarks, layout.eye_height_mm, section);
   if (!width) return width.error();
   layout.central_width_mm = *width;
-  layout.eye_height_mm =
-      0.5 * (landmarks[Landmark::EyeOuterLeft]->y() + landmarks[Landmark::EyeOuterRight]->y());
   const double W = *width;
   const double inner = mean_abs_x(landmarks, Landmark::EyeInnerLeft, Landmark::EyeInnerRight);
   const double outer = mean_abs_x(landmarks, Landmark::EyeOuterLeft, Landmark::EyeOuterRight);
 
-  // The face border: the widest candidate whose planes, on both sides, supply the height range (less
-  // the slack at each end, for ragged scan outlines), tried in 1 mm steps from the widest.
+  // The face border: as wide as the face still is at both ends of the height range, within
+  // [narrowest, widest].
   const double edge = density(canonical, section);
   const double narrowest = outer + std::max({options.min_border_fraction * W, options.min_spacing_mm, edge});
   const double widest = std::max(narrowest, outer + options.border_fraction * W);
-  std::vector<double> candidates;
-  for (double b = widest; b > narrowest; b -= 1.0) {
-    candidates.push_back(b);
-    candidates.push_back(-b);
+  double reach = widest;
+  for (std::size_t k = 1; k < 3; ++k) {
+    const auto extent = covered_extent(cuts[k], 0.0, section.max_gap_mm);
+    reach = std::min({reach, -extent[0], extent[1]});
   }
-  layout.border_mm = narrowest;
-  const ProfileAxes axes; // height along y, seen from +z
-  const std::vector<Section> probes = sections(canonical, Vec3::UnitX(), candidates, axes, section);
-  const double need_lo = layout.target[0] + options.border_slack_mm;
-  const double need_hi = layout.target[1] - options.border_slack_mm;
-  for (std::size_t i = 0; i + 1 < candidates.size(); i += 2) {
-    bool supplies = true;
-    for (std::size_t side = 0; side < 2; ++side) {
-      const auto extent = covered_extent(probes[i + side], 0.0, section.max_gap_mm);
-      supplies = supplies && extent[0] <= need_lo && extent[1] >= need_hi;
-    }
-    if (supplies) {
-      layout.border_mm = candidates[i];
-      break;
-    }
-  }
+  layout.border_mm = std::clamp(reach, narrowest, widest);
 
   const std::array<double, 5> features{options.wing_fraction * inner, inner, 0.5 * (inner + outer), outer,
                                        layout.border_mm};

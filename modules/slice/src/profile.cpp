@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace pdeface::slice {
 namespace {
@@ -210,19 +211,29 @@ Section cloud_section(std::span<const Vec3> points, const Plane& plane, const Pr
   return section;
 }
 
-std::vector<Section> sections(const Mesh& scan, const Vec3& normal, std::span<const double> offsets,
-                              const ProfileAxes& axes, const SectionOptions& options) {
+std::vector<Section> sections(const Mesh& scan, std::span<const Plane> planes,
+                              std::span<const ProfileAxes> axes, const SectionOptions& options) {
+  if (axes.size() != planes.size()) throw std::invalid_argument("slice::sections: one axes per plane");
   std::vector<Section> out;
-  out.reserve(offsets.size());
+  out.reserve(planes.size());
   if (scan.is_point_cloud()) {
     const double spacing = options.spacing_mm > 0.0 ? options.spacing_mm : point_spacing(scan.positions);
-    for (double d : offsets)
-      out.push_back(cloud_section(scan.positions, Plane{normal, d}, axes, spacing, options));
+    for (std::size_t j = 0; j < planes.size(); ++j)
+      out.push_back(cloud_section(scan.positions, planes[j], axes[j], spacing, options));
     return out;
   }
-  for (const std::vector<Polyline>& cut : intersect(scan, normal, offsets))
-    out.push_back(mesh_section(cut, axes));
+  const std::vector<std::vector<Polyline>> cuts = intersect(scan, planes);
+  for (std::size_t j = 0; j < planes.size(); ++j)
+    out.push_back(mesh_section(cuts[j], axes[j]));
   return out;
+}
+
+std::vector<Section> sections(const Mesh& scan, const Vec3& normal, std::span<const double> offsets,
+                              const ProfileAxes& axes, const SectionOptions& options) {
+  std::vector<Plane> planes;
+  for (double d : offsets)
+    planes.push_back({normal, d});
+  return sections(scan, planes, std::vector<ProfileAxes>(planes.size(), axes), options);
 }
 
 std::array<double, 2> covered_extent(const Section& section, double seed, double max_gap_mm) {

@@ -39,51 +39,68 @@ std::size_t median(std::vector<std::size_t> v) {
 
 } // namespace
 
+namespace {
+
+// The planes of the four evaluation profiles, how each is read, and the range it spans.
+struct EvaluationSpec {
+  const char* name;
+  Plane plane;
+  ProfileAxes axes;
+  const char* axis;
+};
+
+std::array<EvaluationSpec, 4> evaluation_specs(double eye_height) {
+  const double s = 1.0 / std::sqrt(2.0);
+  return {{
+      {"symmetry", {Vec3::UnitX(), 0.0}, {Vec3::UnitY(), Vec3::UnitZ()}, "y"},
+      {"eyes", {Vec3::UnitY(), eye_height}, {Vec3::UnitX(), Vec3::UnitZ()}, "x"},
+      {"diagonal_up", {Vec3(-s, s, 0.0), 0.0}, {Vec3(s, s, 0.0), Vec3::UnitZ()}, "u"},
+      {"diagonal_down", {Vec3(s, s, 0.0), 0.0}, {Vec3(s, -s, 0.0), Vec3::UnitZ()}, "u"},
+  }};
+}
+
+// The profiles from their sections, each within the rectangle [−border, border] × range.
+Result<std::vector<EvaluationProfile>> evaluation_from(const std::array<EvaluationSpec, 4>& specs,
+                                                       std::span<const Section> cuts,
+                                                       std::array<double, 2> range, double border,
+                                                       const SectionOptions& section) {
+  const double r2 = std::sqrt(2.0);
+  const std::array<std::array<double, 2>, 4> ranges{{
+      range,
+      {-border, border},
+      {r2 * std::max(-border, range[0]), r2 * std::min(border, range[1])},
+      {r2 * std::max(-border, -range[1]), r2 * std::min(border, -range[0])},
+  }};
+  std::vector<EvaluationProfile> out;
+  for (std::size_t i = 0; i < specs.size(); ++i) {
+    const EvaluationSpec& spec = specs[i];
+    // Trimmed to where the surface ends, by up to a bridgeable gap (a point cloud's outline is only known
+    // to about its spacing); never across a hole.
+    const auto extent = covered_extent(cuts[i], 0.0, section.max_gap_mm);
+    const auto [want_lo, want_hi] = ranges[i];
+    const double lo = extent[0] > want_lo && extent[0] - want_lo <= section.max_gap_mm ? extent[0] : want_lo;
+    const double hi = extent[1] < want_hi && want_hi - extent[1] <= section.max_gap_mm ? extent[1] : want_hi;
+    Result<Profile> profile = clip(cuts[i], spec.axes, lo, hi, section, spec.axis);
+    if (!profile)
+      return about(fmt::format("the {} evaluation profile", spec.name), std::move(profile).error());
+    out.push_back({spec.name, spec.plane, spec.axes.along, std::move(profile->points)});
+  }
+  return out;
+}
+
+} // namespace
+
 Result<std::vector<EvaluationProfile>> evaluation_profiles(const Mesh& canonical, std::array<double, 2> range,
                                                            double border, double eye_height,
                                                            const SectionOptions& section) {
-  const double r2 = std::sqrt(2.0), s = 1.0 / r2;
-  struct Spec {
-    const char* name;
-    Plane plane;
-    Vec3 along;
-    std::array<double, 2> range;
-    const char* axis;
-  };
-  const std::array<Spec, 4> specs{{
-      {"symmetry", {Vec3::UnitX(), 0.0}, Vec3::UnitY(), range, "y"},
-      {"eyes", {Vec3::UnitY(), eye_height}, Vec3::UnitX(), {-border, border}, "x"},
-      {"diagonal_up",
-       {Vec3(-s, s, 0.0), 0.0},
-       Vec3(s, s, 0.0),
-       {r2 * std::max(-border, range[0]), r2 * std::min(border, range[1])},
-       "u"},
-      {"diagonal_down",
-       {Vec3(s, s, 0.0), 0.0},
-       Vec3(s, -s, 0.0),
-       {r2 * std::max(-border, -range[1]), r2 * std::min(border, -range[0])},
-       "u"},
-  }};
-  std::vector<EvaluationProfile> out;
-  for (const Spec& spec : specs) {
-    const ProfileAxes axes{spec.along, Vec3::UnitZ()};
-    const std::vector<Section> cut =
-        sections(canonical, spec.plane.normal, std::span(&spec.plane.offset, 1), axes, section);
-    // Trimmed to where the surface ends, by up to a bridgeable gap (a point cloud's outline is only known
-    // to about its spacing); never across a hole.
-    const auto extent = covered_extent(cut.front(), 0.0, section.max_gap_mm);
-    const double lo = extent[0] > spec.range[0] && extent[0] - spec.range[0] <= section.max_gap_mm
-                          ? extent[0]
-                          : spec.range[0];
-    const double hi = extent[1] < spec.range[1] && spec.range[1] - extent[1] <= section.max_gap_mm
-                          ? extent[1]
-                          : spec.range[1];
-    Result<Profile> profile = clip(cut.front(), axes, lo, hi, section, spec.axis);
-    if (!profile)
-      return about(fmt::format("the {} evaluation profile", spec.name), std::move(profile).error());
-    out.push_back({spec.name, spec.plane, spec.along, std::move(profile->points)});
+  const auto specs = evaluation_specs(eye_height);
+  std::vector<Plane> planes;
+  std::vector<ProfileAxes> axes;
+  for (const EvaluationSpec& spec : specs) {
+    planes.push_back(spec.plane);
+    axes.push_back(spec.axes);
   }
-  return out;
+  return evaluation_from(specs, sections(canonical, planes, axes, section), range, border, section);
 }
 
 Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmarks& landmarks,
@@ -114,13 +131,23 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
   set.central_width_mm = layout->central_width_mm;
   set.eye_height_mm = layout->eye_height_mm;
 
+  // One pass over the scan for every plane: the curves' and the evaluation profiles'.
+  const auto specs = evaluation_specs(set.eye_height_mm);
+  std::vector<Plane> all;
+  std::vector<ProfileAxes> all_axes;
+  for (const ProfilePlane& p : planes) {
+    all.push_back({Vec3::UnitX(), p.x});
+    all_axes.push_back({});
+  }
+  for (const EvaluationSpec& spec : specs) {
+    all.push_back(spec.plane);
+    all_axes.push_back(spec.axes);
+  }
+  const std::vector<Section> cuts = sections(canonical, all, all_axes, section);
+  const ProfileAxes axes;
+
   // The height range: the target, narrowed to where each plane's surface ends; a hole inside it is an
   // error, since narrowing there would cut the face in two.
-  std::vector<double> xs;
-  for (const ProfilePlane& p : planes)
-    xs.push_back(p.x);
-  const ProfileAxes axes;
-  const std::vector<Section> cuts = sections(canonical, Vec3::UnitX(), xs, axes, section);
   std::array<double, 2> range = layout->target;
   std::array<std::size_t, 2> limited_by{planes.size(), planes.size()};
   for (std::size_t j = 0; j < planes.size(); ++j) {
@@ -189,7 +216,7 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
   }
 
   Result<std::vector<EvaluationProfile>> evaluation =
-      evaluation_profiles(canonical, range, set.border_mm, set.eye_height_mm, section);
+      evaluation_from(specs, std::span(cuts).subspan(planes.size()), range, set.border_mm, section);
   if (!evaluation) return evaluation.error();
   set.evaluation = std::move(evaluation).value();
   set.spacing_mm = set.point_cloud ? section.spacing_mm : 0.0;

@@ -29,6 +29,12 @@ struct Polyline {
 //! the plane appears once however many triangles share it.
 [[nodiscard]] std::vector<Polyline> intersect(const Mesh& mesh, const Plane& plane);
 
+//! The intersections of `mesh` with any planes, in one pass over the mesh: planes that share a normal
+//! are bucketed by offset, so that each triangle is cut only by the planes its extent spans. Result `j`
+//! belongs to `planes[j]`.
+//! \throw std::invalid_argument when a normal is not of unit length or an offset is not finite.
+[[nodiscard]] std::vector<std::vector<Polyline>> intersect(const Mesh& mesh, std::span<const Plane> planes);
+
 //! The intersections of `mesh` with the parallel planes `normal · p = offsets[j]` (any order), in one
 //! pass over the mesh: each triangle goes only to the planes its extent along `normal` spans. Result `j`
 //! belongs to `offsets[j]`.

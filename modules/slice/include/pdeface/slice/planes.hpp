@@ -33,7 +33,7 @@ struct PlaneOptions {
   double wing_fraction = 0.65;       //!< nose-wing joints at this fraction of the inner eye corners' |x|
   double border_fraction = 0.12;     //!< face border at most this fraction of W beyond the outer eye corners,
   double min_border_fraction = 0.03; //!< and at least this fraction (and one mesh edge)
-  double border_slack_mm = 10.0;     //!< the border must supply the height range less this at each end
+  double border_slack_mm = 10.0;     //!< the border must reach the height range less this at each end
   double min_spacing_mm = 1.0;       //!< joints closer than this (or than one mesh edge) are an error
   //! The height range [bottom, top] (mm, nose tip at 0) profiles should span; default: the face's
   //! bottom and top landmarks.
@@ -57,9 +57,10 @@ struct PlaneLayout {
 
 //! The planes for a scan in the canonical frame (mesh or point cloud) and its landmarks (canonical).
 //! Joints, from the midline out on each side: nose wing (wing_fraction · inner), inner eye corner, eye
-//! centre (midway), outer eye corner (each the mean of the left and right |x|), face border (the widest
-//! |x| within [outer + min_border_fraction · W, outer + border_fraction · W] whose planes on both sides
-//! supply the height range, else the narrowest). Other curve counts interpolate these joints.
+//! centre (midway), outer eye corner (each the mean of the left and right |x|), face border (as wide as
+//! the face's front surface reaches at both ends of the height range, less `border_slack_mm`, kept
+//! within [outer + min_border_fraction · W, outer + border_fraction · W]). Other curve counts interpolate
+//! these joints.
 //! Errors: `InvalidArgument` for a curve count that is not 3 · (odd) + 1 or landmarks that are missing;
 //! `NoFace` when joints collapse (closer than `min_spacing_mm`) or the eye line cannot be measured.
 [[nodiscard]] Result<PlaneLayout> profile_planes(const Mesh& canonical, const align::Landmarks& landmarks,

@@ -46,7 +46,12 @@ struct Section {
                                     double spacing, const SectionOptions& options = {});
 
 //! The sections of a mesh (one pass over it, `intersect`) or of a point cloud (`cloud_section`, with
-//! `options.spacing_mm` its point spacing, measured when 0) by the parallel planes `normal · p = offsets[j]`.
+//! `options.spacing_mm` its point spacing, measured when 0) by `planes`, each read along its `axes`.
+//! \pre `axes.size() == planes.size()`.
+[[nodiscard]] std::vector<Section> sections(const Mesh& scan, std::span<const Plane> planes,
+                                            std::span<const ProfileAxes> axes,
+                                            const SectionOptions& options = {});
+//! The same for the parallel planes `normal · p = offsets[j]`, all read along `axes`.
 [[nodiscard]] std::vector<Section> sections(const Mesh& scan, const Vec3& normal,
                                             std::span<const double> offsets, const ProfileAxes& axes,
                                             const SectionOptions& options = {});
