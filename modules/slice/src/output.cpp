@@ -87,7 +87,7 @@ std::string profiles_svg(const Mesh& canonical, const ProfileSet& set, const Svg
     for (const Vec3& p : symmetry->points)
       z0 = std::min(z0, p.z());
   z0 -= 10.0;
-  const double side_width = 15.0 - z0, gap = 15.0;
+  const double side_width = std::max(15.0 - z0, 95.0), gap = 15.0; // room for the caption
   const double width = (x1 - x0) + gap + side_width, height = (y1 - y0) + 16.0;
 
   std::string svg =

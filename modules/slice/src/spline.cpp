@@ -130,13 +130,14 @@ Result<Spline> fit_spline(std::span<const Vec3> points, const SplineOptions& opt
         ErrorCode::InvalidArgument,
         fmt::format("the points do not advance along the {} parameter", to_string(options.parameter)));
 
-  // The data is the polyline, not only its vertices: a chord longer than a quarter of a span (a bridged
-  // hole, a jump at an occlusion) gets points along it, so that no span is left without data.
-  const double step = 0.25 / static_cast<double>(n - 3);
+  // A chord longer than half a span (a bridged hole, a jump at an occlusion) gets points along it every
+  // quarter span, so that no span is left without data; shorter chords are left alone, since points on
+  // a chord are only as good as linear interpolation.
+  const double span = 1.0 / static_cast<double>(n - 3), step = 0.25 * span;
   std::vector<std::pair<double, Vec3>> data;
   data.reserve(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
-    if (i > 0 && t[i] - t[i - 1] > step) {
+    if (i > 0 && t[i] - t[i - 1] > 0.5 * span) {
       const auto pieces = static_cast<std::size_t>(std::ceil((t[i] - t[i - 1]) / step));
       for (std::size_t k = 1; k < pieces; ++k) {
         const double f = static_cast<double>(k) / static_cast<double>(pieces);
