@@ -164,11 +164,12 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
                       describe(j, planes[j]), layout->target[0], layout->target[1], to - from,
                       0.5 * (from + to), section.max_gap_mm));
     }
+    if (options.planes.height_range) continue; // asked for: every plane must supply it (clip says so)
     if (extent[0] > range[0]) range[0] = extent[0], limited_by[0] = j;
     if (extent[1] < range[1]) range[1] = extent[1], limited_by[1] = j;
   }
   const auto core = core_range(landmarks, options.core_margin_mm);
-  if (range[0] > core[0] || range[1] < core[1]) {
+  if (!options.planes.height_range && (range[0] > core[0] || range[1] < core[1])) {
     const bool low = range[0] > core[0];
     const std::size_t j = limited_by[low ? 0 : 1];
     return make_error(

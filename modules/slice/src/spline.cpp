@@ -120,10 +120,6 @@ Result<Spline> fit_spline(std::span<const Vec3> points, const SplineOptions& opt
                       fmt::format("a cubic spline needs at least 4 control points, "
                                   "not {}",
                                   n));
-  if (points.size() < n)
-    return make_error(
-        ErrorCode::InvalidArgument,
-        fmt::format("{} points cannot determine a spline with {} control points", points.size(), n));
   const std::vector<double> t = parameters(points, options);
   if (t.empty())
     return make_error(

@@ -46,9 +46,11 @@ private:
 //! advance: all at one height, or all one point).
 [[nodiscard]] std::vector<double> parameters(std::span<const Vec3> points, const SplineOptions& options);
 
-//! The least-squares cubic spline with `options.controls` control points through the ordered `points`.
-//! Errors: `InvalidArgument` when there are fewer points than control points, fewer than 4 control
-//! points, or the points do not advance along the parameter.
+//! The least-squares cubic spline with `options.controls` control points through the ordered `points`,
+//! taken as a polyline: a chord longer than half a knot span (a bridged hole, a jump where the front
+//! switches surfaces) contributes points along it, so more control points than points is allowed.
+//! Errors: `InvalidArgument` when there are fewer than 4 control points or the points do not advance
+//! along the parameter.
 [[nodiscard]] Result<Spline> fit_spline(std::span<const Vec3> points, const SplineOptions& options = {});
 
 } // namespace pdeface::slice
