@@ -103,16 +103,20 @@ private:
   double lo_ = 0.0, bin_ = 1.0;
 };
 
-// Depth of the section at height u, interpolated between its visible points (which are ascending).
+// The section at height u: interpolated between its visible points (which are ascending), or the end
+// point moved to height u where u lies beyond them (within the cover, at most half a cloud's spacing).
 Vec3 interpolate(const std::vector<Vec3>& points, const ProfileAxes& axes, double u) {
   auto above = std::lower_bound(points.begin(), points.end(), u,
                                 [&](const Vec3& p, double h) { return axes.along.dot(p) < h; });
-  if (above == points.begin()) return *above;
-  if (above == points.end()) return points.back();
-  const Vec3& a = *(above - 1);
-  const Vec3& b = *above;
-  const double ua = axes.along.dot(a), ub = axes.along.dot(b);
-  Vec3 p = ua == ub ? b : Vec3(a + (u - ua) / (ub - ua) * (b - a));
+  Vec3 p;
+  if (above == points.begin() || above == points.end()) {
+    p = above == points.end() ? points.back() : *above;
+  } else {
+    const Vec3& a = *(above - 1);
+    const Vec3& b = *above;
+    const double ua = axes.along.dot(a), ub = axes.along.dot(b);
+    p = ua == ub ? b : Vec3(a + (u - ua) / (ub - ua) * (b - a));
+  }
   return p + (u - axes.along.dot(p)) * axes.along; // exactly at height u
 }
 

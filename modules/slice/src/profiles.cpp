@@ -129,7 +129,11 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
   const std::vector<ProfilePlane>& planes = layout->planes;
   set.border_mm = layout->border_mm;
   set.central_width_mm = layout->central_width_mm;
-  set.eye_height_mm = layout->eye_height_mm;
+  // The evaluation profile through the eyes: at the mean height of the four eye corners.
+  set.eye_height_mm = 0.0;
+  for (Landmark corner :
+       {Landmark::EyeInnerLeft, Landmark::EyeInnerRight, Landmark::EyeOuterLeft, Landmark::EyeOuterRight})
+    set.eye_height_mm += 0.25 * landmarks[corner]->y();
 
   // One pass over the scan for every plane: the curves' and the evaluation profiles'.
   const auto specs = evaluation_specs(set.eye_height_mm);

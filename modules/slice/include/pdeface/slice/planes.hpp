@@ -32,7 +32,7 @@ struct PlaneOptions {
   std::size_t curves = 28;           //!< 3 · patches + 1, with an odd number of patches (symmetric layout)
   double wing_fraction = 0.65;       //!< nose-wing joints at this fraction of the inner eye corners' |x|
   double border_fraction = 0.12;     //!< face border at most this fraction of W beyond the outer eye corners,
-  double min_border_fraction = 0.03; //!< and at least this fraction (and one mesh edge)
+  double min_border_fraction = 0.02; //!< and at least this fraction (and one mesh edge)
   double border_slack_mm = 10.0;     //!< the border must reach the height range less this at each end
   double min_spacing_mm = 1.0;       //!< joints closer than this (or than one mesh edge) are an error
   //! The height range [bottom, top] (mm, nose tip at 0) profiles should span; default: the face's

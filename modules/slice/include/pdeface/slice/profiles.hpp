@@ -55,8 +55,8 @@ struct ProfileSet {
   std::array<double, 2> height_range{}; //!< y_bottom, y_top: every curve spans exactly this
   double border_mm = 0.0;               //!< the curves span x ∈ [−border, border]
   double central_width_mm = 0.0;
-  double eye_height_mm = 0.0;
-  align::FaceFrame frame; //!< scan → canonical, to map results back into the scan
+  double eye_height_mm = 0.0; //!< the eye evaluation profile's height: mean of the four eye corners
+  align::FaceFrame frame;     //!< scan → canonical, to map results back into the scan
   Parameter parameter = Parameter::ArcLength;
   std::size_t k = 0;                //!< points per fitted curve
   std::size_t reference_points = 0; //!< the median raw point count of the curves
