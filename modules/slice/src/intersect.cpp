@@ -31,8 +31,10 @@ int sign(double s) { return (s > 0.0) - (s < 0.0); }
 
 class Cutter {
 public:
-  Cutter(const Mesh& mesh, const std::vector<double>& heights, const Vec3& normal)
-      : p_(mesh.positions), h_(heights), n_(normal) {}
+  // `heights[v * stride + family]`: the signed heights of vertex v along the family's normal.
+  Cutter(const Mesh& mesh, const std::vector<double>& heights, std::size_t stride, std::size_t family,
+         const Vec3& normal)
+      : p_(mesh.positions), h_(heights), stride_(stride), family_(family), n_(normal) {}
 
   // The segment (if any) the triangle `t` cuts from the plane n · p = d.
   void cut(const Triangle& t, double d, std::vector<Segment>& out) const {
@@ -40,7 +42,7 @@ public:
     std::array<int, 3> sg{};
     int zeros = 0, positive = 0, negative = 0;
     for (int k = 0; k < 3; ++k) {
-      s[k] = h_[t[k]] - d;
+      s[k] = h_[t[k] * stride_ + family_] - d;
       sg[k] = sign(s[k]);
       zeros += sg[k] == 0;
       positive += sg[k] > 0;
@@ -79,11 +81,12 @@ private:
 
   const std::vector<Vec3>& p_;
   const std::vector<double>& h_;
+  std::size_t stride_, family_;
   Vec3 n_;
 };
 
 // Chains segments into polylines through shared keys: open chains from their free ends first, then the
-// closed loops that remain. Segment ends are sorted by key; equal keys pair up ends (two per key on a
+// closed loops that remain. Segment ends are paired by key (two per key on a
 // manifold mesh; more are paired in order, as at a vertex where the surface touches itself).
 std::vector<Polyline> chain(std::vector<Segment> segments) {
   // An edge lying in the plane comes from both its triangles: keep it once.
@@ -104,27 +107,36 @@ std::vector<Polyline> chain(std::vector<Segment> segments) {
                    segments.end());
   }
 
-  struct End {
-    Key key;
-    std::uint32_t index; // 2 · segment + side
-  };
+  // Pairs the ends sharing a key through an open-addressing table (ends in index order, so a key met
+  // more than twice pairs its first and second ends, then its third and fourth, ...).
   constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
   const auto count = static_cast<std::uint32_t>(segments.size());
-  std::vector<End> ends;
-  ends.reserve(2 * segments.size());
-  for (std::uint32_t i = 0; i < count; ++i) {
-    ends.push_back({segments[i].a.key, 2 * i});
-    ends.push_back({segments[i].b.key, 2 * i + 1});
-  }
-  std::sort(ends.begin(), ends.end(),
-            [](const End& l, const End& r) { return l.key != r.key ? l.key < r.key : l.index < r.index; });
-  std::vector<std::uint32_t> partner(ends.size(), kNone);
-  for (std::size_t i = 0; i + 1 < ends.size(); ++i)
-    if (ends[i].key == ends[i + 1].key) {
-      partner[ends[i].index] = ends[i + 1].index;
-      partner[ends[i + 1].index] = ends[i].index;
-      ++i;
+  std::vector<std::uint32_t> partner(2 * segments.size(), kNone);
+  std::size_t size = 16;
+  while (size < 4 * segments.size())
+    size *= 2;
+  struct Slot {
+    Key key;
+    std::uint32_t pending; // the end waiting for a partner, or kNone
+    bool used;
+  };
+  std::vector<Slot> table(size, Slot{0, kNone, false});
+  for (std::uint32_t end = 0; end < 2 * count; ++end) {
+    const Key key = end % 2 == 0 ? segments[end / 2].a.key : segments[end / 2].b.key;
+    std::size_t i = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> 32U) & (size - 1);
+    while (table[i].used && table[i].key != key)
+      i = (i + 1) & (size - 1);
+    Slot& slot = table[i];
+    if (!slot.used) {
+      slot = {key, end, true};
+    } else if (slot.pending == kNone) {
+      slot.pending = end;
+    } else {
+      partner[end] = slot.pending;
+      partner[slot.pending] = end;
+      slot.pending = kNone;
     }
+  }
 
   auto point = [&](std::uint32_t end) -> const Vec3& {
     const Segment& s = segments[end / 2];
@@ -176,7 +188,6 @@ std::vector<std::vector<Polyline>> intersect(const Mesh& mesh, std::span<const P
   // triangle finds the planes of the family it spans by a binary search.
   struct Family {
     Vec3 normal;
-    std::vector<double> heights;
     std::vector<double> offsets;     // ascending
     std::vector<std::size_t> planes; // index into `planes`, in the order of `offsets`
     // The first plane at or above the start of each of a few uniform bins over the offsets: a triangle
@@ -221,25 +232,40 @@ std::vector<std::vector<Polyline>> intersect(const Mesh& mesh, std::span<const P
     for (std::size_t j : f.planes)
       f.offsets.push_back(planes[j].offset);
     f.index();
-    f.heights.resize(mesh.positions.size());
-    for (std::size_t i = 0; i < f.heights.size(); ++i)
-      f.heights[i] = f.normal.dot(mesh.positions[i]);
   }
-
+  // Per vertex and family: its height along the normal, and a code placing it among the family's
+  // offsets (2j: between offsets j − 1 and j; 2j + 1: exactly on offset j). A triangle spans plane j iff
+  // its vertices' codes bracket 2j + 1, so most triangles are dismissed by comparing three codes, and
+  // the codes of all families sit together per vertex.
+  const std::size_t stride = families.size();
+  std::vector<double> heights(mesh.positions.size() * stride);
+  std::vector<std::uint32_t> codes(mesh.positions.size() * stride);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    for (std::size_t k = 0; k < stride; ++k) {
+      const double h = families[k].normal.dot(mesh.positions[i]);
+      const std::size_t j = families[k].first_at_or_above(h);
+      heights[i * stride + k] = h;
+      codes[i * stride + k] =
+          static_cast<std::uint32_t>(2 * j + (j < families[k].offsets.size() && families[k].offsets[j] == h));
+    }
   std::vector<Cutter> cutters;
-  for (const Family& f : families)
-    cutters.emplace_back(mesh, f.heights, f.normal);
+  for (std::size_t k = 0; k < stride; ++k)
+    cutters.emplace_back(mesh, heights, stride, k, families[k].normal);
   std::vector<std::vector<Segment>> segments(planes.size());
   for (auto& s : segments)
     s.reserve(256);
-  for (const Triangle& t : mesh.triangles)
-    for (std::size_t k = 0; k < families.size(); ++k) {
-      const Family& f = families[k];
-      const double a = f.heights[t[0]], b = f.heights[t[1]], c = f.heights[t[2]];
-      const double lo = std::min(a, std::min(b, c)), hi = std::max(a, std::max(b, c));
-      for (std::size_t j = f.first_at_or_above(lo); j < f.offsets.size() && f.offsets[j] <= hi; ++j)
-        cutters[k].cut(t, f.offsets[j], segments[f.planes[j]]);
+  for (const Triangle& t : mesh.triangles) {
+    const std::uint32_t* a = &codes[t[0] * stride];
+    const std::uint32_t* b = &codes[t[1] * stride];
+    const std::uint32_t* c = &codes[t[2] * stride];
+    for (std::size_t k = 0; k < stride; ++k) {
+      const std::uint32_t lo = std::min(a[k], std::min(b[k], c[k]));
+      const std::uint32_t hi = std::max(a[k], std::max(b[k], c[k]));
+      // Planes j with lo <= 2j + 1 <= hi.
+      for (std::uint32_t j = lo / 2; 2 * j + 1 <= hi; ++j)
+        cutters[k].cut(t, families[k].offsets[j], segments[families[k].planes[j]]);
     }
+  }
   std::vector<std::vector<Polyline>> out(planes.size());
   for (std::size_t j = 0; j < planes.size(); ++j)
     out[j] = chain(std::move(segments[j]));
