@@ -7,6 +7,8 @@
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/core/summary.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/slice/output.hpp"
+#include "pdeface/slice/profiles.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -184,6 +186,41 @@ struct AlignRequest {
   formats::WriteOptions write;
 };
 
+// A scan's landmarks and frame: read from `landmarks_file` (completed on the scan) or detected.
+struct Alignment {
+  align::Landmarks landmarks; // scan frame
+  align::FaceFrame frame;
+  std::optional<double> confidence; // when detected
+};
+
+Result<Alignment> align_scan(const Mesh& mesh, const fs::path& in, const fs::path& landmarks_file) {
+  Alignment a;
+  if (landmarks_file.empty()) {
+    Result<align::Detection> found = align::detect_landmarks(mesh);
+    if (!found) {
+      Error e = std::move(found).error();
+      e.source = in.string();
+      return e;
+    }
+    return Alignment{found->landmarks, found->frame, found->confidence};
+  }
+  Result<std::string> bytes = read_file(landmarks_file);
+  if (!bytes) return bytes.error();
+  Result<align::Landmarks> given = align::read_landmarks(*bytes, landmarks_file.string());
+  if (!given) return given.error();
+  a.landmarks = *given;
+  if (a.landmarks.units == Units::Unknown) a.landmarks.units = align::detect_units(mesh);
+  Result<align::FaceFrame> fitted = align::frame_from_landmarks(a.landmarks, a.landmarks.units);
+  if (!fitted) {
+    Error e = std::move(fitted).error();
+    e.source = landmarks_file.string();
+    return e;
+  }
+  a.frame = *fitted;
+  a.landmarks = align::complete_landmarks(mesh, a.landmarks, a.frame); // e.g. the face's top and bottom
+  return a;
+}
+
 int run_align(const AlignRequest& request) {
   Notes notes;
   Result<formats::LoadedMesh> scan = formats::read_mesh(request.in, {}, &notes);
@@ -191,35 +228,9 @@ int run_align(const AlignRequest& request) {
   if (!scan) return fail(scan.error());
   const Mesh& mesh = scan->mesh;
 
-  align::Landmarks landmarks;
-  align::FaceFrame frame;
-  std::optional<double> confidence;
-  if (!request.landmarks.empty()) {
-    Result<std::string> bytes = read_file(request.landmarks);
-    if (!bytes) return fail(bytes.error());
-    Result<align::Landmarks> given = align::read_landmarks(*bytes, request.landmarks.string());
-    if (!given) return fail(given.error());
-    landmarks = *given;
-    if (landmarks.units == Units::Unknown) landmarks.units = align::detect_units(mesh);
-    Result<align::FaceFrame> fitted = align::frame_from_landmarks(landmarks, landmarks.units);
-    if (!fitted) {
-      Error e = std::move(fitted).error();
-      e.source = request.landmarks.string();
-      return fail(e);
-    }
-    frame = *fitted;
-    landmarks = align::complete_landmarks(mesh, landmarks, frame); // e.g. the face's top and bottom
-  } else {
-    Result<align::Detection> found = align::detect_landmarks(mesh);
-    if (!found) {
-      Error e = std::move(found).error();
-      e.source = request.in.string();
-      return fail(e);
-    }
-    landmarks = found->landmarks;
-    frame = found->frame;
-    confidence = found->confidence;
-  }
+  Result<Alignment> alignment = align_scan(mesh, request.in, request.landmarks);
+  if (!alignment) return fail(alignment.error());
+  const auto& [landmarks, frame, confidence] = *alignment;
 
   Mesh aligned = align::to_canonical(mesh, frame);
   if (request.crop) {
@@ -256,6 +267,60 @@ int run_align(const AlignRequest& request) {
              to_string(frame.scan_units), tip.x(), tip.y(), tip.z());
   fmt::print("{}: canonical frame, mm, {} vertices, {} triangles{}\n", request.out.string(),
              aligned.vertex_count(), aligned.triangle_count(), request.crop ? ", cropped to the face" : "");
+  return 0;
+}
+
+// ---- profiles -----------------------------------------------------------------------------------------
+
+struct ProfilesRequest {
+  fs::path in;
+  fs::path out;       // JSON
+  fs::path svg;       // picture
+  fs::path landmarks; // given landmarks instead of detection
+  std::string parameter = "arc";
+  std::optional<std::size_t> points;
+  slice::ProfileOptions options;
+};
+
+int run_profiles(ProfilesRequest request) {
+  Notes notes;
+  Result<formats::LoadedMesh> scan = formats::read_mesh(request.in, {}, &notes);
+  print_notes(notes);
+  if (!scan) return fail(scan.error());
+  Result<Alignment> alignment = align_scan(scan->mesh, request.in, request.landmarks);
+  if (!alignment) return fail(alignment.error());
+
+  const Mesh canonical = align::to_canonical(scan->mesh, alignment->frame);
+  request.options.points = request.points;
+  request.options.parameter =
+      request.parameter == "height" ? slice::Parameter::Height : slice::Parameter::ArcLength;
+  Result<slice::ProfileSet> set =
+      slice::extract_profiles(canonical, align::to_canonical(alignment->landmarks, alignment->frame),
+                              alignment->frame, request.options);
+  if (!set) {
+    Error e = std::move(set).error();
+    e.source = request.in.string();
+    return fail(e);
+  }
+  // Both documents are made before either is written, so a failure leaves no output behind.
+  const std::string json = slice::write_profiles_json(*set);
+  const std::string svg =
+      request.svg.empty()
+          ? std::string()
+          : slice::profiles_svg(canonical, *set,
+                                {.title = fmt::format("{}: {} curves, K = {} ({:.1f} % of {} raw points), {}",
+                                                      request.in.filename().string(), set->curves.size(),
+                                                      set->k, 100.0 * set->ratio, set->reference_points,
+                                                      slice::to_string(set->parameter))});
+  if (Result<void> ok = write_file_atomic(request.out, json); !ok) return fail(ok.error());
+  if (!request.svg.empty())
+    if (Result<void> ok = write_file_atomic(request.svg, svg); !ok) return fail(ok.error());
+  fmt::print("{}: {} curves at x = {:.1f} .. {:.1f} mm, y = {:.1f} .. {:.1f} mm, K = {} points ({:.1f} % of "
+             "{} raw), "
+             "4 evaluation profiles -> {}\n",
+             request.in.string(), set->curves.size(), set->curves.front().x, set->curves.back().x,
+             set->height_range[0], set->height_range[1], set->k, 100.0 * set->ratio, set->reference_points,
+             request.out.string());
   return 0;
 }
 
@@ -334,6 +399,37 @@ int main(int argc, char** argv) {
                       "Keep only the face region (between the face's top and bottom, cheek to cheek)");
   add_write_options(align_cmd, align_request.write);
 
+  ProfilesRequest profiles;
+  CLI::App* profiles_cmd = app.add_subcommand(
+      "profiles", "Slice a scan into the paper's profile curves (28 by default), fit and resample them, and "
+                  "extract the 4 evaluation profiles; JSON out, SVG picture optional");
+  profiles_cmd->add_option("input", profiles.in, "Scan (any readable format, mesh or point cloud)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  profiles_cmd->add_option("-o,--output", profiles.out, "Profiles to write as JSON")->required();
+  profiles_cmd->add_option("--svg", profiles.svg,
+                           "Also write a picture: the curves over the face, and the "
+                           "symmetry profile before and after fitting");
+  profiles_cmd
+      ->add_option("--landmarks", profiles.landmarks,
+                   "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
+      ->check(CLI::ExistingFile);
+  profiles_cmd
+      ->add_option("--ratio", profiles.options.ratio, "Sampling ratio: K = ratio x raw points (0.05..0.6)")
+      ->capture_default_str();
+  profiles_cmd->add_option("--points", profiles.points, "Points per curve K, instead of the ratio (>= 4)");
+  profiles_cmd
+      ->add_option("--curves", profiles.options.planes.curves,
+                   "Number of curves: 3 x patches + 1, odd "
+                   "patches (4, 10, 16, 22, 28, ...)")
+      ->capture_default_str();
+  profiles_cmd->add_option("--parameter", profiles.parameter, "Spline parameter: arc (length) or height")
+      ->check(CLI::IsMember({"arc", "height"}))
+      ->capture_default_str();
+  profiles_cmd->add_option("--max-gap", profiles.options.section.max_gap_mm, "Longest hole bridged, mm")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -343,5 +439,6 @@ int main(int argc, char** argv) {
   if (convert_cmd->parsed()) return run_convert(convert);
   if (sample_cmd->parsed()) return run_sample(sample);
   if (align_cmd->parsed()) return run_align(align_request);
+  if (profiles_cmd->parsed()) return run_profiles(profiles);
   return 0;
 }

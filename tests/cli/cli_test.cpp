@@ -58,7 +58,7 @@ TEST_F(Cli, VersionAndHelp) {
   Outcome v = run({"--version"});
   EXPECT_EQ(v.exit_code, 0);
   EXPECT_NE(v.out.find("pdeface 0."), std::string::npos);
-  for (const char* cmd : {"info", "convert", "sample"}) {
+  for (const char* cmd : {"info", "convert", "sample", "align", "profiles"}) {
     Outcome h = run({cmd, "--help"});
     EXPECT_EQ(h.exit_code, 0) << cmd;
     EXPECT_NE(h.out.find("Usage"), std::string::npos) << cmd;
@@ -204,6 +204,57 @@ TEST_F(Cli, AlignFailsCleanlyWithoutAFace) {
   EXPECT_EQ(b.exit_code, 1);
   EXPECT_NE(b.err.find("bad.json"), std::string::npos) << b.err;
   EXPECT_NE(b.err.find("three finite numbers"), std::string::npos) << b.err;
+}
+
+TEST_F(Cli, ProfilesWritesTheCurvesAndThePicture) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  Outcome r = run(
+      {"profiles", path("face.ply"), "--ratio", "0.2", "-o", path("face.json"), "--svg", path("face.svg")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lines(r.out), 1U) << r.out;
+  EXPECT_NE(r.out.find("28 curves"), std::string::npos) << r.out;
+  const auto json = nlohmann::json::parse(slurp(work_ / "face.json"));
+  EXPECT_EQ(json["format"], "pdeface-profiles");
+  ASSERT_EQ(json["curves"].size(), 28U);
+  EXPECT_EQ(json["curves"][0]["points"].size(), json["points_per_curve"]);
+  EXPECT_NEAR(json["sampling_ratio"].get<double>(), 0.2, 0.01);
+  EXPECT_EQ(json["evaluation"].size(), 4U);
+  EXPECT_TRUE(slurp(work_ / "face.svg").starts_with("<svg"));
+
+  // Given landmarks, other counts and K directly.
+  ASSERT_EQ(run({"align", path("face.ply"), "-o", path("aligned.ply"), "--landmarks-out", path("lm.json")})
+                .exit_code,
+            0);
+  Outcome given = run({"profiles", path("face.ply"), "--landmarks", path("lm.json"), "--curves", "16",
+                       "--points", "12", "--parameter", "height", "-o", path("given.json")});
+  ASSERT_EQ(given.exit_code, 0) << given.err;
+  const auto g = nlohmann::json::parse(slurp(work_ / "given.json"));
+  EXPECT_EQ(g["curves"].size(), 16U);
+  EXPECT_EQ(g["points_per_curve"], 12);
+  EXPECT_EQ(g["parameter"], "height");
+}
+
+TEST_F(Cli, ProfilesFailsCleanlyAndWritesNothing) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  const std::size_t before = files();
+  for (const auto& [args, expect] :
+       std::vector<std::pair<std::vector<std::string>, std::string>>{{{"--ratio", "0.7"}, "5 % to 60 %"},
+                                                                     {{"--curves", "27"}, "3 · patches + 1"},
+                                                                     {{"--points", "2"}, "at least 4"},
+                                                                     {{"--max-gap", "0.01"}, "plane "}}) {
+    std::vector<std::string> cmd{"profiles",       path("face.ply"), "-o",
+                                 path("out.json"), "--svg",          path("out.svg")};
+    cmd.insert(cmd.end(), args.begin(), args.end());
+    Outcome r = run(cmd);
+    EXPECT_EQ(r.exit_code, 1) << args[0];
+    EXPECT_EQ(lines(r.err), 1U) << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("face.ply"), std::string::npos) << r.err;
+    EXPECT_EQ(files(), before) << "no output after " << args[0];
+  }
+  Outcome usage = run({"profiles", path("face.ply"), "-o", path("out.json"), "--parameter", "index"});
+  EXPECT_EQ(usage.exit_code, 2);
+  EXPECT_EQ(files(), before);
 }
 
 } // namespace

@@ -1,0 +1,81 @@
+#pragma once
+//! \file
+//! The profile of one plane: the front-most part of a scan's cut, ordered, holes bridged, clipped to a
+//! range. Works on meshes (the polylines of `intersect`) and on point clouds (a thin slab of points).
+
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/core/result.hpp"
+#include "pdeface/slice/intersect.hpp"
+
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pdeface::slice {
+
+//! How a profile is read off a plane. `along` orders the profile (height, +y, for the 28 curves) and
+//! `front` is the direction it is seen from (+z, towards the viewer); both lie in the plane.
+struct ProfileAxes {
+  Vec3 along = Vec3::UnitY();
+  Vec3 front = Vec3::UnitZ();
+};
+
+struct SectionOptions {
+  double max_gap_mm = 8.0;  //!< holes up to this long (along the profile's axis) are bridged linearly
+  double slab_factor = 1.5; //!< point clouds: half-width of the slab, in median point spacings
+  double spacing_mm = 0.0;  //!< point clouds: the median point spacing (0: measured by `sections`)
+};
+
+//! What the front of one plane shows: the visible points ordered along the profile's axis, and where
+//! along that axis there is surface at all (merged intervals, with the holes between them).
+struct Section {
+  std::vector<Vec3> points;                 //!< front-most points, ascending along `along`
+  std::vector<std::array<double, 2>> cover; //!< ascending, disjoint intervals of `along · p` with surface
+};
+
+//! The front-most part of a mesh's cut by one plane (the polylines `intersect` gave for it): a polyline
+//! point is kept when nothing on the plane lies in front of it at its height (ears, the far side and
+//! hidden folds go).
+[[nodiscard]] Section mesh_section(std::span<const Polyline> cut, const ProfileAxes& axes);
+
+//! The same for a point cloud: the points within `slab_factor · spacing` of `plane`, projected onto it,
+//! the front-most layer kept (points more than 3 spacings behind the front of their neighbourhood go)
+//! and thinned to one point per `spacing` of height (a local linear fit in height and distance to the
+//! plane, evaluated on the plane). `spacing` is the median nearest-neighbour distance of the cloud.
+[[nodiscard]] Section cloud_section(std::span<const Vec3> points, const Plane& plane, const ProfileAxes& axes,
+                                    double spacing, const SectionOptions& options = {});
+
+//! The sections of a mesh (one pass over it, `intersect`) or of a point cloud (`cloud_section`, with
+//! `options.spacing_mm` its point spacing, measured when 0) by `planes`, each read along its `axes`.
+//! \pre `axes.size() == planes.size()`.
+[[nodiscard]] std::vector<Section> sections(const Mesh& scan, std::span<const Plane> planes,
+                                            std::span<const ProfileAxes> axes,
+                                            const SectionOptions& options = {});
+//! The same for the parallel planes `normal · p = offsets[j]`, all read along `axes`.
+[[nodiscard]] std::vector<Section> sections(const Mesh& scan, const Vec3& normal,
+                                            std::span<const double> offsets, const ProfileAxes& axes,
+                                            const SectionOptions& options = {});
+
+//! The median distance from a point to its nearest neighbour (on up to 2000 points spread over the
+//! cloud); 0 for fewer than 2 points.
+[[nodiscard]] double point_spacing(std::span<const Vec3> points);
+
+//! The covered interval of `section` that contains `seed` (or starts nearest above it), holes up to
+//! `max_gap_mm` bridged; {seed, seed} when nothing is covered.
+[[nodiscard]] std::array<double, 2> covered_extent(const Section& section, double seed, double max_gap_mm);
+
+//! One profile: points ascending along the axis, from exactly `lo` to exactly `hi`.
+struct Profile {
+  std::vector<Vec3> points;
+  std::size_t bridged = 0;     //!< holes bridged
+  double longest_bridge = 0.0; //!< mm
+};
+
+//! The part of `section` between heights `lo` and `hi` (along `axes.along`), with end points
+//! interpolated at `lo` and `hi` and holes up to `options.max_gap_mm` bridged linearly.
+//! Errors: `NoFace` when the surface does not reach `lo` or `hi`, or a hole is longer; the message says
+//! where ("the scan has no surface between y = -80 and y = -62 mm ..."), with `axis_name` naming the axis.
+[[nodiscard]] Result<Profile> clip(const Section& section, const ProfileAxes& axes, double lo, double hi,
+                                   const SectionOptions& options = {}, std::string_view axis_name = "y");
+
+} // namespace pdeface::slice

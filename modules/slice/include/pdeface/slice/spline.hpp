@@ -1,0 +1,56 @@
+#pragma once
+//! \file
+//! Least-squares cubic B-spline fitting of a profile, and its resampling to K points.
+
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/core/result.hpp"
+
+#include <span>
+#include <vector>
+
+namespace pdeface::slice {
+
+//! What the spline's parameter t ∈ [0, 1] follows along the raw points.
+enum class Parameter {
+  ArcLength, //!< normalised chord length of the raw polyline: points equally spaced along the curve
+  Height,    //!< normalised height (`SplineOptions::along`): equal t is equal height on every curve
+};
+
+[[nodiscard]] std::string_view to_string(Parameter parameter) noexcept;
+
+struct SplineOptions {
+  Parameter parameter = Parameter::ArcLength;
+  std::size_t controls = 30;  //!< control points (at least 4); the pipeline uses K, the resampled count
+  Vec3 along = Vec3::UnitY(); //!< the height axis, for `Parameter::Height`
+  double smoothing = 1e-9;    //!< weight of a second-difference penalty on the control points,
+                              //!< relative to the data term: keeps spans without data well defined
+};
+
+//! A clamped cubic B-spline on uniform knots over t ∈ [0, 1] (value type).
+class Spline {
+public:
+  //! \pre at least 4 control points.
+  explicit Spline(std::vector<Vec3> controls);
+
+  //! The point at t (clamped to [0, 1]).
+  [[nodiscard]] Vec3 evaluate(double t) const;
+  //! K points at t_k = k / (K − 1), k = 0..K−1 (v_k = kπ / (K − 1) on the PDE's [0, π]). \pre K ≥ 2.
+  [[nodiscard]] std::vector<Vec3> resample(std::size_t k) const;
+  [[nodiscard]] const std::vector<Vec3>& controls() const noexcept { return controls_; }
+
+private:
+  std::vector<Vec3> controls_;
+};
+
+//! The parameter values of `points` under `options.parameter`, from 0 to 1 (empty if they do not
+//! advance: all at one height, or all one point).
+[[nodiscard]] std::vector<double> parameters(std::span<const Vec3> points, const SplineOptions& options);
+
+//! The least-squares cubic spline with `options.controls` control points through the ordered `points`,
+//! taken as a polyline: a chord longer than half a knot span (a bridged hole, a jump where the front
+//! switches surfaces) contributes points along it, so more control points than points is allowed.
+//! Errors: `InvalidArgument` when there are fewer than 4 control points or the points do not advance
+//! along the parameter.
+[[nodiscard]] Result<Spline> fit_spline(std::span<const Vec3> points, const SplineOptions& options = {});
+
+} // namespace pdeface::slice

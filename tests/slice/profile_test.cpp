@@ -1,0 +1,110 @@
+// Profiles of one plane: height fields, front-most layers, holes, point clouds.
+
+#include "meshes.hpp"
+#include "pdeface/slice/profile.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace pdeface::slice {
+namespace {
+
+// A smooth face-like height field (mm): |f_yy| <= 12/400 + ..., well inside a 120 x 160 mm box.
+double f(double x, double y) { return 12.0 * std::cos(x / 25.0) * std::sin(y / 20.0) - 0.004 * x * x; }
+
+Result<Profile> profile_at(const Mesh& m, double c, double lo, double hi, const SectionOptions& o = {}) {
+  const auto cut = intersect(m, Plane{Vec3::UnitX(), c});
+  return clip(mesh_section(cut, {}), {}, lo, hi, o);
+}
+
+TEST(Profile, HeightFieldSliceReproducesTheFunction) {
+  // Sliced between grid lines, each point is on a triangle edge: off f by at most the linear
+  // interpolation error h²/8 · max|f''| along that edge (diagonals: twice the squared step).
+  for (double h : {2.0, 1.0, 0.5}) {
+    const Mesh m = test::height_field(f, -60, 60, -80, 80, h);
+    const double c = 13.3;
+    Result<Profile> p = profile_at(m, c, -70.0, 70.0);
+    ASSERT_TRUE(p) << p.error().message;
+    const double second = 12.0 / 400.0 + 12.0 / 625.0 + 0.008 + 2 * 12.0 / 500.0; // bound on |f''| any way
+    const double bound = 2.0 * h * h / 8.0 * second;
+    double worst = 0.0;
+    for (const Vec3& q : p->points) {
+      EXPECT_EQ(q.x(), c);
+      worst = std::max(worst, std::abs(q.z() - f(c, q.y())));
+    }
+    EXPECT_LE(worst, bound) << "h = " << h;
+    EXPECT_GT(worst, bound / 100.0) << "h = " << h; // it is the triangulation error, not zero
+    EXPECT_EQ(p->points.front().y(), -70.0);
+    EXPECT_EQ(p->points.back().y(), 70.0);
+    for (std::size_t i = 1; i < p->points.size(); ++i)
+      EXPECT_LT(p->points[i - 1].y(), p->points[i].y());
+    EXPECT_EQ(p->bridged, 0U);
+  }
+}
+
+TEST(Profile, KeepsTheFrontLayer) {
+  // The face and, 60 mm behind it, a second sheet (an ear, the back of the head) over part of the range.
+  Mesh m = test::height_field(f, -60, 60, -80, 80, 1.0);
+  const Mesh back = test::height_field([](double, double) { return -60.0; }, -20, 20, -30, 30, 1.0);
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  m.positions.insert(m.positions.end(), back.positions.begin(), back.positions.end());
+  for (Triangle t : back.triangles)
+    m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  Result<Profile> p = profile_at(m, 5.0, -70.0, 70.0);
+  ASSERT_TRUE(p);
+  for (const Vec3& q : p->points)
+    EXPECT_GT(q.z(), -30.0);
+}
+
+TEST(Profile, SmallHolesAreBridgedLongOnesNamed) {
+  auto hole = [](double r) { return [r](double x, double y) { return std::hypot(x - 10.0, y - 30.0) > r; }; };
+  const Mesh small = test::height_field(f, -60, 60, -80, 80, 1.0, hole(2.5));
+  Result<Profile> bridged = profile_at(small, 10.2, -70.0, 70.0);
+  ASSERT_TRUE(bridged) << bridged.error().message;
+  EXPECT_EQ(bridged->bridged, 1U);
+  EXPECT_GT(bridged->longest_bridge, 3.0);
+  EXPECT_LT(bridged->longest_bridge, 8.0);
+
+  const Mesh big = test::height_field(f, -60, 60, -80, 80, 1.0, hole(10.0));
+  Result<Profile> broken = profile_at(big, 10.2, -70.0, 70.0);
+  ASSERT_FALSE(broken);
+  EXPECT_EQ(broken.error().code, ErrorCode::NoFace);
+  EXPECT_NE(broken.error().message.find("hole 2"), std::string::npos) << broken.error().message; // ~20 mm
+  EXPECT_NE(broken.error().message.find("at y = 3"), std::string::npos) << broken.error().message;
+  // A longer bridge is an option away.
+  EXPECT_TRUE(profile_at(big, 10.2, -70.0, 70.0, {.max_gap_mm = 25.0}));
+
+  Result<Profile> beyond = profile_at(small, 10.2, -70.0, 95.0);
+  ASSERT_FALSE(beyond);
+  EXPECT_NE(beyond.error().message.find("the surface ends at y = 80.0"), std::string::npos)
+      << beyond.error().message;
+}
+
+TEST(Profile, PointCloudSlabFollowsTheSurface) {
+  Mesh cloud = test::height_field(f, -60, 60, -80, 80, 0.7);
+  cloud.triangles.clear();
+  const double spacing = point_spacing(cloud.positions);
+  EXPECT_NEAR(spacing, 0.7, 0.01); // the grid step, a little more where the surface slopes
+  const Section s = cloud_section(cloud.positions, Plane{Vec3::UnitX(), 13.3}, {}, spacing);
+  Result<Profile> p = clip(s, {}, -70.0, 70.0);
+  ASSERT_TRUE(p) << p.error().message;
+  double worst = 0.0;
+  for (const Vec3& q : p->points) {
+    EXPECT_EQ(q.x(), 13.3);
+    worst = std::max(worst, std::abs(q.z() - f(13.3, q.y())));
+  }
+  EXPECT_LT(worst, 0.05); // a local linear fit on the slab: second order in the spacing
+  EXPECT_GT(p->points.size(), 140.0 / 0.7 / 2);
+}
+
+TEST(Profile, CoveredExtentBridgesShortGaps) {
+  Section s;
+  s.cover = {{-50, -20}, {-15, 10}, {30, 60}};
+  EXPECT_EQ(covered_extent(s, 0.0, 8.0), (std::array<double, 2>{-50, 10}));
+  EXPECT_EQ(covered_extent(s, 0.0, 25.0), (std::array<double, 2>{-50, 60}));
+  EXPECT_EQ(covered_extent(s, 40.0, 8.0), (std::array<double, 2>{30, 60}));
+}
+
+} // namespace
+} // namespace pdeface::slice

@@ -1,0 +1,85 @@
+// Every scan in ../shared/faces (meshes and the point cloud), aligned by detection, gives the 28 profiles
+// and the 4 evaluation profiles, where a person expects them.
+
+#include "pdeface/align/detect.hpp"
+#include "pdeface/formats/formats.hpp"
+#include "pdeface/slice/profiles.hpp"
+#include "pdeface_test.hpp"
+
+#include <gtest/gtest.h>
+
+namespace pdeface::slice {
+namespace {
+
+using align::Landmark;
+
+double distance_to(const Vec3& p, const std::vector<Vec3>& line) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const Vec3 d = line[i + 1] - line[i];
+    const double t = std::clamp((p - line[i]).dot(d) / std::max(d.squaredNorm(), 1e-12), 0.0, 1.0);
+    best = std::min(best, (line[i] + t * d - p).norm());
+  }
+  return best;
+}
+
+class RealScan : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(RealScan, Gives28ProfilesAndTheEvaluationProfiles) {
+  PDEFACE_FACE_OR_SKIP(path, GetParam());
+  Result<formats::LoadedMesh> scan = formats::read_mesh(path);
+  ASSERT_TRUE(scan) << scan.error().to_string();
+  Result<align::Detection> found = align::detect_landmarks(scan->mesh);
+  ASSERT_TRUE(found) << found.error().to_string();
+  const Mesh canonical = align::to_canonical(scan->mesh, found->frame);
+  const align::Landmarks landmarks = align::to_canonical(found->landmarks, found->frame);
+
+  Result<ProfileSet> set = extract_profiles(canonical, landmarks, found->frame);
+  ASSERT_TRUE(set) << set.error().to_string();
+  ASSERT_EQ(set->curves.size(), 28U);
+  ASSERT_EQ(set->evaluation.size(), 4U);
+  const auto [lo, hi] = set->height_range;
+  for (const ProfileCurve& c : set->curves) {
+    EXPECT_EQ(c.raw.front().y(), lo) << c.feature;
+    EXPECT_EQ(c.raw.back().y(), hi) << c.feature;
+    EXPECT_EQ(c.points.size(), set->k);
+    EXPECT_GE(c.raw.size(), 60U) << c.feature; // real sections, not a few bridged points
+  }
+  // From below the mouth to above the eyes.
+  EXPECT_LT(lo, std::min(landmarks[Landmark::MouthLeft]->y(), landmarks[Landmark::MouthRight]->y()) - 5.0);
+  EXPECT_GT(hi, landmarks[Landmark::EyeInnerLeft]->y() + 5.0);
+  // Where a person expects them: the outer eye corner joints pass the outer eye corners, the symmetry
+  // profile's front-most point is the nose tip, the eye line passes all four corners.
+  for (auto [joint, corner] : {std::pair{3U, Landmark::EyeOuterRight},
+                               {24U, Landmark::EyeOuterLeft},
+                               {9U, Landmark::EyeInnerRight},
+                               {18U, Landmark::EyeInnerLeft}})
+    EXPECT_LT(distance_to(*landmarks[corner], set->curves[joint].raw), 6.0) << align::name(corner);
+  const auto& symmetry = set->evaluation[0].points;
+  const Vec3 front = *std::max_element(symmetry.begin(), symmetry.end(),
+                                       [](const Vec3& a, const Vec3& b) { return a.z() < b.z(); });
+  EXPECT_LT(front.norm(), 3.0);
+  for (Landmark corner :
+       {Landmark::EyeOuterRight, Landmark::EyeOuterLeft, Landmark::EyeInnerRight, Landmark::EyeInnerLeft})
+    EXPECT_LT(distance_to(*landmarks[corner], set->evaluation[1].points), 9.0) << align::name(corner);
+  // The fitted curves stay on the raw ones (mean over all points, at the default 10 %).
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const ProfileCurve& c : set->curves)
+    for (const Vec3& p : c.points) {
+      sum += distance_to(p, c.raw);
+      ++n;
+    }
+  EXPECT_LT(sum / static_cast<double>(n), 1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Faces, RealScan,
+                         ::testing::Values("facefuns_f18.ply", "facefuns_f36.ply", "facefuns_f56.ply",
+                                           "facefuns_m26.ply", "facefuns_m46.ply", "facefuns_m66.ply",
+                                           "facefuns_example.obj", "facefuns_f36.glb", "facefuns_m46.drc",
+                                           "facefuns_f56_points.ply", "james.obj", "fran_cut.wrl",
+                                           "stfaces_neutral.wrl"),
+                         test::FileParamName());
+
+} // namespace
+} // namespace pdeface::slice
