@@ -106,6 +106,16 @@ TEST(PdeSurface, PhysicalSpacingFollowsTheCurvesMeanX) {
   for (std::size_t j = 0; j < 28; ++j)
     EXPECT_NEAR(s.knots()[j], 9 * (xs[j] - xs[0]) / (xs[27] - xs[0]), 1e-12);
   EXPECT_LE(curve_error(s, curves, all_curves(28)), 1e-9);
+  // Every scheme reproduces x, which is linear in u here, exactly between the curves too (linear precision:
+  // the paper's slopes must be scaled to patches of any length).
+  for (Scheme scheme : {Scheme::Spline, Scheme::Paper, Scheme::Patch4}) {
+    const Surface t = build(curves, {.scheme = scheme, .modes = 8, .spacing = Spacing::Physical});
+    const Grid g = t.evaluate(face::linspace(0, 9, 200), face::linspace(0, std::numbers::pi, 9));
+    for (std::size_t i = 0; i < g.u_count; ++i)
+      for (std::size_t k = 0; k < g.v_count; ++k)
+        ASSERT_NEAR(g(i, k).x(), xs[0] + (xs[27] - xs[0]) * static_cast<double>(i) / 199, 1e-9)
+            << to_string(scheme);
+  }
   // Reversed order (decreasing x) is accepted as well.
   std::reverse(curves.samples.begin(), curves.samples.end());
   EXPECT_TRUE(Surface::build(curves, {.spacing = Spacing::Physical}).ok());

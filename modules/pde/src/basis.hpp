@@ -25,25 +25,27 @@ inline constexpr std::array<Condition, 4> hermite_conditions{{{0, 0}, {0, 1}, {1
   return {{{0, 0}, {s1, 0}, {s2, 0}, {1, 0}}};
 }
 
-//! The factorised system `M c = data` of four conditions in the basis used for m: row i of M is the
-//! basis (or its derivative) at condition i. `cardinals` gives H with A(t) = H·data.
+//! The system `M c = data` of four conditions in the basis used for m: row i of M is the basis (or its
+//! derivative) at condition i. Kept as its inverse (from a pivoted LU): a 4 × 4 is applied far more often
+//! than it is built, and fixed-size products are the cheapest way to apply it.
 class PieceSystem {
 public:
   PieceSystem(double m, const std::array<Condition, 4>& conditions);
 
   [[nodiscard]] double m() const { return m_; }
   //! Basis coefficients of the solution that meets `data` (4 rows, one column per right-hand side).
-  template <class Data> [[nodiscard]] auto coefficients(const Data& data) const { return lu_.solve(data); }
+  template <class Data> [[nodiscard]] auto coefficients(const Data& data) const { return inverse_ * data; }
   //! The cardinal functions at t: A^{(derivative)}(t) = cardinals(t, derivative) · data.
   [[nodiscard]] Eigen::Vector4d cardinals(double t, int derivative) const {
-    return lu_.transpose().solve(mode_basis(m_, t, derivative));
+    return inverse_.transpose() * mode_basis(m_, t, derivative);
   }
   //! False when the system is singular or not finite (four positions with huge m).
-  [[nodiscard]] bool usable() const;
+  [[nodiscard]] bool usable() const { return usable_; }
 
 private:
   double m_;
-  Eigen::PartialPivLU<Eigen::Matrix4d> lu_;
+  Eigen::Matrix4d inverse_;
+  bool usable_;
 };
 
 } // namespace pdeface::pde::detail

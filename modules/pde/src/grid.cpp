@@ -74,6 +74,24 @@ Mesh Surface::mesh(std::size_t u_count, std::size_t v_count) const {
   return triangulate(evaluate(u_count, v_count), units_);
 }
 
+namespace {
+// Normals of a regular grid from its differences along u and v (central inside, one-sided at the
+// borders): X_u × X_v to second order, without the scatter of per-triangle normals over a mesh.
+std::vector<Vec3f> grid_normals(const std::vector<Vec3>& p, std::size_t nu, std::size_t nv) {
+  std::vector<Vec3f> normals(p.size());
+  for (std::size_t k = 0; k < nv; ++k) {
+    const std::size_t k0 = k == 0 ? 0 : k - 1, k1 = k + 1 == nv ? k : k + 1;
+    for (std::size_t i = 0; i < nu; ++i) {
+      const std::size_t i0 = i == 0 ? 0 : i - 1, i1 = i + 1 == nu ? i : i + 1;
+      const Vec3 n = (p[k * nu + i1] - p[k * nu + i0]).cross(p[k1 * nu + i] - p[k0 * nu + i]);
+      const double length = n.norm();
+      normals[k * nu + i] = length > 0 ? Vec3f((n / length).cast<float>()) : Vec3f::Zero();
+    }
+  }
+  return normals;
+}
+} // namespace
+
 Mesh triangulate(Grid grid, Units units) {
   const std::size_t nu = grid.u_count, nv = grid.v_count;
   if (nu < 2 || nv < 2 || grid.points.size() != nu * nv)
@@ -81,14 +99,15 @@ Mesh triangulate(Grid grid, Units units) {
   Mesh mesh;
   mesh.units = units;
   mesh.positions = std::move(grid.points);
-  mesh.triangles.reserve(2 * (nu - 1) * (nv - 1));
+  mesh.triangles.resize(2 * (nu - 1) * (nv - 1));
+  std::size_t t = 0;
   const auto index = [nu](std::size_t i, std::size_t k) { return static_cast<std::uint32_t>(k * nu + i); };
   for (std::size_t k = 0; k + 1 < nv; ++k)
     for (std::size_t i = 0; i + 1 < nu; ++i) { // counter-clockwise in (u, v): normals along X_u × X_v
-      mesh.triangles.push_back({index(i, k), index(i + 1, k), index(i + 1, k + 1)});
-      mesh.triangles.push_back({index(i, k), index(i + 1, k + 1), index(i, k + 1)});
+      mesh.triangles[t++] = {index(i, k), index(i + 1, k), index(i + 1, k + 1)};
+      mesh.triangles[t++] = {index(i, k), index(i + 1, k + 1), index(i, k + 1)};
     }
-  mesh.normals = vertex_normals(mesh);
+  mesh.normals = grid_normals(mesh.positions, nu, nv);
   return mesh;
 }
 

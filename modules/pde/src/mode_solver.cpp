@@ -3,17 +3,28 @@
 #include "pdeface/pde/modes.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace pdeface::pde::detail {
 
 std::vector<PieceSpan> piece_spans(Scheme scheme, const std::vector<double>& knots) {
   std::vector<PieceSpan> pieces;
   const std::size_t step = scheme == Scheme::Spline ? 1 : 3;
+  // Pieces equal up to rounding (uniform knots j/3 differ in the last bit) are made exactly equal, so
+  // that they share one factorised system per frequency.
+  const auto snap = [](double& value, double previous) {
+    if (std::abs(value - previous) <= 1e-12 * std::abs(previous)) value = previous;
+  };
   for (std::size_t j = 0; j + step < knots.size(); j += step) {
     PieceSpan piece{.start = knots[j], .length = knots[j + step] - knots[j], .first_curve = j};
     if (step == 3) {
       piece.inner1 = (knots[j + 1] - knots[j]) / piece.length;
       piece.inner2 = (knots[j + 2] - knots[j]) / piece.length;
+    }
+    if (!pieces.empty()) {
+      snap(piece.length, pieces.back().length);
+      snap(piece.inner1, pieces.back().inner1);
+      snap(piece.inner2, pieces.back().inner2);
     }
     pieces.push_back(piece);
   }
@@ -52,24 +63,22 @@ double ModeSolver::amplification() const {
 // Hermite data are (p_j, h D_j, p_{j+1}, h D_{j+1}) and A'' = a''/h².
 void ModeSolver::factor_spline() {
   const std::size_t count = knots_.size();
-  curvature0_.resize(pieces_.size());
-  curvature1_.resize(pieces_.size());
-  for (std::size_t p = 0; p < pieces_.size(); ++p) {
-    curvature0_[p] = system(p).cardinals(0, 2);
-    curvature1_[p] = system(p).cardinals(1, 2);
+  for (const PieceSystem& s : systems_) {
+    curvature0_.push_back(s.cardinals(0, 2));
+    curvature1_.push_back(s.cardinals(1, 2));
   }
   Eigen::VectorXd sub = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(count)), diag = sub, super = sub;
   for (std::size_t i = 0; i < count; ++i) {
     const auto row = static_cast<Eigen::Index>(i);
     if (i > 0) { // the piece on the left, at its t = 1
       const double h = pieces_[i - 1].length;
-      sub[row] += curvature1_[i - 1][1] / h;
-      diag[row] += curvature1_[i - 1][3] / h;
+      sub[row] += curvature1(i - 1)[1] / h;
+      diag[row] += curvature1(i - 1)[3] / h;
     }
     if (i + 1 < count) { // minus the piece on the right, at its t = 0 (plus, alone at the first knot)
       const double h = pieces_[i].length, sign = i == 0 ? 1.0 : -1.0;
-      diag[row] += sign * curvature0_[i][1] / h;
-      super[row] += sign * curvature0_[i][3] / h;
+      diag[row] += sign * curvature0(i)[1] / h;
+      super[row] += sign * curvature0(i)[3] / h;
     }
   }
   // Thomas factorisation: safe without pivoting because the system is diagonally dominant.
@@ -89,12 +98,12 @@ ModeValues ModeSolver::spline_slopes(const ModeValues& values) const {
   for (std::size_t i = 0; i < count; ++i) {
     if (i > 0) {
       const double h2 = pieces_[i - 1].length * pieces_[i - 1].length;
-      const Eigen::Vector4d& c = curvature1_[i - 1];
+      const Eigen::Vector4d& c = curvature1(i - 1);
       rhs.row(row(i)) -= (c[0] * values.row(row(i - 1)) + c[2] * values.row(row(i))) / h2;
     }
     if (i + 1 < count) {
       const double h2 = pieces_[i].length * pieces_[i].length, sign = i == 0 ? -1.0 : 1.0;
-      const Eigen::Vector4d& c = curvature0_[i];
+      const Eigen::Vector4d& c = curvature0(i);
       rhs.row(row(i)) += sign * (c[0] * values.row(row(i)) + c[2] * values.row(row(i + 1))) / h2;
     }
     if (i == 0 || i + 1 == count) rhs.row(row(i)) += an_ * an_ * values.row(row(i)); // natural ends

@@ -63,9 +63,15 @@ private:
   std::vector<std::size_t> system_of_; // piece -> its system
   // Spline: the C² conditions on the slopes at the knots, a diagonally dominant tridiagonal system,
   // factorised (Thomas): sub-diagonal, pivots, and super-diagonal divided by the pivots; and the end
-  // second-derivative rows of every piece (a''(0), a''(1) as maps of local Hermite data).
+  // second derivatives of every system (a''(0), a''(1) as maps of local Hermite data).
   Eigen::VectorXd sub_, pivot_, upper_;
-  std::vector<Eigen::Vector4d> curvature0_, curvature1_;
+  std::vector<Eigen::Vector4d> curvature0_, curvature1_; // per system
+  [[nodiscard]] const Eigen::Vector4d& curvature0(std::size_t piece) const {
+    return curvature0_[system_of_[piece]];
+  }
+  [[nodiscard]] const Eigen::Vector4d& curvature1(std::size_t piece) const {
+    return curvature1_[system_of_[piece]];
+  }
 };
 
 } // namespace pdeface::pde::detail
