@@ -331,6 +331,8 @@ TEST(PdeSurface, BadCurvesAndOptionsAreErrors) {
            k.conservativeResize(1, 3);
        },
        ErrorCode::InvalidArgument, "curve 0 has too few samples (1): need at least 2"},
+      {"too many samples", [](Curves& c, Options&) { c.samples[3].conservativeResize(4098, 3); },
+       ErrorCode::InvalidArgument, "curve 3 has 4098 samples: at most 4097 are supported"},
       {"sample counts differ", [](Curves& c, Options&) { c.samples[2].conservativeResize(9, 3); },
        ErrorCode::InvalidArgument,
        "curve 2 has 9 samples but curve 0 has 10: every curve needs the same number"},

@@ -43,6 +43,10 @@ std::optional<Error> check_curves(const Curves& curves, std::string_view source)
     if (c[j].rows() < 2)
       return invalid(fmt::format("curve {} has too few samples ({}): need at least 2", j, c[j].rows()),
                      source);
+    if (c[j].rows() > static_cast<Eigen::Index>(max_samples))
+      return invalid(
+          fmt::format("curve {} has {} samples: at most {} are supported", j, c[j].rows(), max_samples),
+          source);
     if (c[j].rows() != c[0].rows())
       return invalid(
           fmt::format("curve {} has {} samples but curve 0 has {}: every curve needs the same number", j,
@@ -54,6 +58,30 @@ std::optional<Error> check_curves(const Curves& curves, std::string_view source)
                           fmt::format("curve {}, sample {}: coordinate is not finite", j, k),
                           std::string(source));
   }
+  return std::nullopt;
+}
+
+// Options that cannot work with these curves.
+std::optional<Error> check_options(const Curves& curves, const Options& options, std::string_view source) {
+  const std::size_t count = curves.samples.size();
+  const auto samples = static_cast<std::size_t>(curves.samples[0].rows());
+  if (options.scheme != Scheme::Spline && (count - 1) % 3 != 0)
+    return invalid(fmt::format("the {} scheme needs 3p+1 curves (4, 7, ..., 28: patches of 4 sharing their "
+                               "ends), got {}",
+                               to_string(options.scheme), count),
+                   source);
+  if (options.modes && *options.modes > samples - 1)
+    return invalid(fmt::format("{} modes asked for, but curves of {} samples hold at most {}", *options.modes,
+                               samples, samples - 1),
+                   source);
+  if (options.smoothing && !(std::isfinite(*options.smoothing) && *options.smoothing > 0))
+    return invalid(
+        fmt::format("the smoothing parameter a must be positive and finite, got {:g}", *options.smoothing),
+        source);
+  if (!(options.patch4_max_amplification >= 1))
+    return invalid(fmt::format("the patch4 amplification cap must be at least 1, got {:g}",
+                               options.patch4_max_amplification),
+                   source);
   return std::nullopt;
 }
 
@@ -139,25 +167,9 @@ Result<double> isotropic_smoothing(const Curves& curves) {
 
 Result<Surface> Surface::build(const Curves& curves, const Options& options, std::string_view source) {
   if (auto error = check_curves(curves, source)) return *error;
+  if (auto error = check_options(curves, options, source)) return *error;
   const std::size_t count = curves.samples.size();
   const auto samples = static_cast<std::size_t>(curves.samples[0].rows());
-  if (options.scheme != Scheme::Spline && (count - 1) % 3 != 0)
-    return invalid(fmt::format("the {} scheme needs 3p+1 curves (4, 7, ..., 28: patches of 4 sharing their "
-                               "ends), got {}",
-                               to_string(options.scheme), count),
-                   source);
-  if (options.modes && *options.modes > samples - 1)
-    return invalid(fmt::format("{} modes asked for, but curves of {} samples hold at most {}", *options.modes,
-                               samples, samples - 1),
-                   source);
-  if (options.smoothing && !(std::isfinite(*options.smoothing) && *options.smoothing > 0))
-    return invalid(
-        fmt::format("the smoothing parameter a must be positive and finite, got {:g}", *options.smoothing),
-        source);
-  if (!(options.patch4_max_amplification >= 1))
-    return invalid(fmt::format("the patch4 amplification cap must be at least 1, got {:g}",
-                               options.patch4_max_amplification),
-                   source);
 
   Surface s;
   s.scheme_ = options.scheme;
@@ -177,12 +189,6 @@ Result<Surface> Surface::build(const Curves& curves, const Options& options, std
   s.knots_ = std::move(knots).value();
   const std::vector<detail::PieceSpan> spans = detail::piece_spans(s.scheme_, s.knots_);
 
-  // Every coordinate of every curve in cosines: column 3j + c of the samples is coordinate c of curve j.
-  Eigen::MatrixXd stacked(static_cast<Eigen::Index>(samples), static_cast<Eigen::Index>(3 * count));
-  for (std::size_t j = 0; j < count; ++j)
-    stacked.middleCols<3>(static_cast<Eigen::Index>(3 * j)) = curves.samples[j];
-  const Eigen::MatrixXd alpha = cosine_coefficients(stacked);
-
   if (s.scheme_ == Scheme::Patch4) { // amplification grows with m: the highest frequency decides
     const double top = s.frequency(s.columns_ - 1);
     const double worst = detail::ModeSolver(s.scheme_, s.knots_, spans, s.a_, top).amplification();
@@ -190,6 +196,13 @@ Result<Surface> Surface::build(const Curves& curves, const Options& options, std
       return patch4_refusal(worst, top, s.a_, options, s.knots_, spans, source);
   }
 
+  // Every coordinate of every curve in cosines: column 3j + c holds coordinate c of curve j.
+  Eigen::MatrixXd stacked(static_cast<Eigen::Index>(samples), static_cast<Eigen::Index>(3 * count));
+  for (std::size_t j = 0; j < count; ++j)
+    stacked.middleCols<3>(static_cast<Eigen::Index>(3 * j)) = curves.samples[j];
+  const Eigen::MatrixXd alpha = cosine_coefficients(stacked);
+
+  // Solve every column: its own frequency for n ≤ N, frequency N+1 for all the remainder's columns.
   for (const auto& span : spans)
     s.pieces_.push_back(
         {span.start, span.length,
@@ -198,9 +211,8 @@ Result<Surface> Surface::build(const Curves& curves, const Options& options, std
   std::vector<detail::PieceCoefficients> solved;
   detail::ModeValues values(static_cast<Eigen::Index>(count), 3);
   for (std::size_t n = 0; n < s.columns_; ++n) {
-    if (n == 0 || s.frequency(n) != s.frequency(n - 1)) {
+    if (n == 0 || s.frequency(n) != s.frequency(n - 1))
       solver.emplace(s.scheme_, s.knots_, spans, s.a_, s.frequency(n));
-    }
     for (std::size_t j = 0; j < count; ++j)
       values.row(static_cast<Eigen::Index>(j)) =
           alpha.block<1, 3>(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(3 * j));

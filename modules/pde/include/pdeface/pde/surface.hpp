@@ -24,6 +24,10 @@ namespace pdeface::pde {
 //! K samples of one curve, one row per sample (x, y, z), at v_k = kπ/(K−1).
 using Curve = Eigen::Matrix<double, Eigen::Dynamic, 3>;
 
+//! The most samples per curve a surface accepts: the cosine transform costs O(K²) per curve, so curves read
+//! from a file must not be able to make it hang (profiles are resampled to ~15-300 points).
+inline constexpr std::size_t max_samples = 4097;
+
 //! The curves a surface goes through, in order across the surface (u). All share K.
 struct Curves {
   std::vector<Curve> samples; //!< samples[j] is curve j
@@ -65,8 +69,9 @@ struct Options {
   //! interpolated curve is met at every sample. R is determined by the curves: it costs no storage.
   bool remainder = true;
   Spacing spacing = Spacing::Uniform;
-  //! `Patch4` is refused when its highest mode would amplify the curves' data more than this. The default
-  //! 10 (one digit lost) allows m = a·n ≲ 14 on a unit patch: 14 modes at a = 1, ~53 at a = 0.26.
+  //! `Patch4` is refused when its highest frequency would amplify the curves' data more than this. The
+  //! default 10 (one digit lost) is reached at m = a·n = 14.5 on a unit patch: frequency 14 at a = 1, 55 at
+  //! a = π·15/180.
   double patch4_max_amplification = 10.0;
 };
 
@@ -97,11 +102,11 @@ struct Grid {
 //! A PDE surface, solved once from its curves; evaluating it costs one dense matrix product.
 class Surface {
 public:
-  //! Solves every mode. Errors (`InvalidArgument` unless said): fewer than 4 curves, fewer than 2 samples
-  //! or different sample counts, a curve count that is not 3p+1 for `Paper` and `Patch4`, more than K−1
-  //! modes, a smoothing parameter that is not positive and finite, curves not ordered by mean x for
-  //! `Physical` spacing, `Patch4` beyond its amplification cap (the message says how many modes fit);
-  //! `NonFinite` for a NaN or infinite coordinate. `source` names the curves in errors.
+  //! Solves every mode. Errors (`InvalidArgument` unless said): fewer than 4 curves, fewer than 2 or more
+  //! than `max_samples` samples, different sample counts, a curve count that is not 3p+1 for `Paper` and
+  //! `Patch4`, more than K−1 modes, a smoothing parameter that is not positive and finite, curves not ordered
+  //! by mean x for `Physical` spacing, `Patch4` beyond its amplification cap (the message says how many modes
+  //! fit); `NonFinite` for a NaN or infinite coordinate. `source` names the curves in errors.
   [[nodiscard]] static Result<Surface> build(const Curves& curves, const Options& options = {},
                                              std::string_view source = {});
 
