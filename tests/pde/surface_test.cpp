@@ -413,6 +413,9 @@ TEST(PdeSurface, EvaluationIsTheSameAtAnyResolutionAndDerivativesMatchDifference
   for (std::size_t i = 0; i < 10; ++i)
     for (std::size_t k = 0; k < 7; ++k)
       EXPECT_LT((coarse(i, k) - fine(2 * i, 2 * k)).norm(), 1e-10);
+  const Grid none = s.evaluate(std::vector<double>{}, std::vector<double>{1.1});
+  EXPECT_EQ(none.u_count, 0u);
+  EXPECT_TRUE(none.points.empty());
   const Grid single = s.evaluate(std::vector<double>{2.2}, std::vector<double>{1.1});
   const Grid block = s.evaluate(std::vector<double>{0.3, 2.2, 8.9}, std::vector<double>{0.0, 1.1});
   EXPECT_LT((single(0, 0) - block(1, 1)).norm(), 1e-10);

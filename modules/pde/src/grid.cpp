@@ -50,6 +50,7 @@ Grid Surface::evaluate(std::span<const double> us, std::span<const double> vs, D
 
   Grid grid{static_cast<std::size_t>(nu), static_cast<std::size_t>(nv),
             std::vector<Vec3>(static_cast<std::size_t>(nu * nv))};
+  if (grid.points.empty()) return grid;
   // Column-major 3nu × nv is exactly the points' memory: point (i, k) at k·nu + i, xyz interleaved.
   Eigen::Map<Eigen::MatrixXd>(grid.points.data()->data(), 3 * nu, nv).noalias() = a * trig;
   return grid;
