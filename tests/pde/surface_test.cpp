@@ -278,6 +278,27 @@ TEST(PdeSurface, Patch4IsRefusedBeyondItsCap) {
   EXPECT_NE(overflow.error().message.find("inf-fold"), std::string::npos) << overflow.error().message;
 }
 
+TEST(PdeSurface, MaxModesIsTheEdgeBuildAccepts) {
+  const Curves curves = face::profiles(60);
+  const Options patch4{.scheme = Scheme::Patch4, .smoothing = 1.0};
+  EXPECT_EQ(max_modes(curves, patch4).value(), 13u); // with the remainder: frequency 14 is the last in
+  Options without = patch4;
+  without.remainder = false;
+  EXPECT_EQ(max_modes(curves, without).value(), 14u);
+  for (const Options& o : {patch4, without}) {
+    Options at = o, beyond = o;
+    at.modes = max_modes(curves, o).value();
+    beyond.modes = *at.modes + 1;
+    EXPECT_TRUE(Surface::build(curves, at).ok());
+    EXPECT_FALSE(Surface::build(curves, beyond).ok());
+  }
+  // Every mode fits for the stable schemes, and for patch4 on short curves; nothing fits at a huge a.
+  EXPECT_EQ(max_modes(curves, {.scheme = Scheme::Spline, .smoothing = 1.0}).value(), 59u);
+  EXPECT_EQ(max_modes(curves, {.scheme = Scheme::Paper, .smoothing = 1.0}).value(), 59u);
+  EXPECT_EQ(max_modes(face::profiles(12), patch4).value(), 11u);
+  EXPECT_FALSE(max_modes(curves, {.scheme = Scheme::Patch4, .smoothing = 1000.0}).ok());
+}
+
 TEST(PdeSurface, NothingOverflowsUpToMode1000) {
   const Curves curves = face::profiles(1001);
   for (Scheme scheme : {Scheme::Spline, Scheme::Paper, Scheme::Patch4}) {

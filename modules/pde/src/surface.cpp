@@ -135,15 +135,23 @@ bool within_cap(double amplification, const Options& options) {
   return std::isfinite(amplification) && amplification <= options.patch4_max_amplification;
 }
 
+// The highest frequency below `limit` that patch4 keeps within the cap; −1 when not even frequency 0 does.
+double highest_stable_frequency(double limit, double a, const Options& options,
+                                const std::vector<double>& knots,
+                                const std::vector<detail::PieceSpan>& pieces) {
+  double stable = -1;
+  for (double f = 0; f < limit; ++f) {
+    if (!within_cap(detail::ModeSolver(Scheme::Patch4, knots, pieces, a, f).amplification(), options)) break;
+    stable = f;
+  }
+  return stable;
+}
+
 // Patch4 beyond its cap: say which frequencies would be stable.
 Error patch4_refusal(double worst, double top_frequency, double a, const Options& options,
                      const std::vector<double>& knots, const std::vector<detail::PieceSpan>& pieces,
                      std::string_view source) {
-  double stable = -1;
-  for (double f = 0; f < top_frequency; ++f) {
-    if (!within_cap(detail::ModeSolver(Scheme::Patch4, knots, pieces, a, f).amplification(), options)) break;
-    stable = f;
-  }
+  const double stable = highest_stable_frequency(top_frequency, a, options, knots, pieces);
   const std::string advice =
       stable < 0 ? std::string("no frequency stays within the cap: use the spline scheme")
                  : fmt::format(
@@ -163,6 +171,38 @@ Error patch4_refusal(double worst, double top_frequency, double a, const Options
 Result<double> isotropic_smoothing(const Curves& curves) {
   if (auto error = check_curves(curves, {})) return *error;
   return isotropic(curves, {});
+}
+
+Result<std::size_t> max_modes(const Curves& curves, const Options& options, std::string_view source) {
+  if (auto error = check_curves(curves, source)) return *error;
+  Options all = options;
+  all.modes.reset();
+  if (auto error = check_options(curves, all, source)) return *error;
+  const auto top = static_cast<std::size_t>(curves.samples[0].rows()) - 1;
+  if (options.scheme != Scheme::Patch4) return top;
+
+  double a = 0;
+  if (options.smoothing) {
+    a = *options.smoothing;
+  } else {
+    auto isotropic_a = isotropic(curves, source);
+    if (!isotropic_a) return std::move(isotropic_a).error();
+    a = *isotropic_a;
+  }
+  auto knots = curve_positions(curves, options.spacing, source);
+  if (!knots) return std::move(knots).error();
+  const double stable = highest_stable_frequency(static_cast<double>(top) + 1, a, options, *knots,
+                                                 detail::piece_spans(Scheme::Patch4, *knots));
+  if (stable >= static_cast<double>(top)) return top; // every mode fits: no remainder needed
+  // The remainder takes frequency N+1, so with it one mode fewer fits.
+  const double modes = options.remainder ? stable - 1 : stable;
+  if (modes < 0)
+    return invalid(
+        fmt::format("patch4 amplifies even the lowest modes more than {:g}-fold (a = {:g}): use the "
+                    "spline scheme",
+                    options.patch4_max_amplification, a),
+        source);
+  return static_cast<std::size_t>(modes);
 }
 
 Result<Surface> Surface::build(const Curves& curves, const Options& options, std::string_view source) {

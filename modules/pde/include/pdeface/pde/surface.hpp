@@ -81,6 +81,13 @@ struct Options {
 //! physical length equally smooth. Errors: `InvalidArgument` when the curves have no length or width.
 [[nodiscard]] Result<double> isotropic_smoothing(const Curves& curves);
 
+//! The most modes N that `Surface::build` accepts for these curves and options (whatever `options.modes`
+//! says): K−1 for `Spline` and `Paper`; for `Patch4` the largest N whose highest frequency (N+1 with the
+//! remainder, unless N = K−1) stays within the amplification cap. Errors: those of `build`, and
+//! `InvalidArgument` when no N fits.
+[[nodiscard]] Result<std::size_t> max_modes(const Curves& curves, const Options& options = {},
+                                            std::string_view source = {});
+
 //! Which partial derivative `Surface::evaluate` returns.
 enum class Derivative { None, U, V };
 
