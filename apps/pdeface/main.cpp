@@ -2,7 +2,11 @@
 
 #include "pdeface/align/crop.hpp"
 #include "pdeface/align/detect.hpp"
+#include "pdeface/align/frame.hpp"
 #include "pdeface/align/preview.hpp"
+#include "pdeface/compare/fidelity.hpp"
+#include "pdeface/compare/reconstruct.hpp"
+#include "pdeface/compare/table.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/core/summary.hpp"
@@ -186,39 +190,14 @@ struct AlignRequest {
   formats::WriteOptions write;
 };
 
-// A scan's landmarks and frame: read from `landmarks_file` (completed on the scan) or detected.
-struct Alignment {
-  align::Landmarks landmarks; // scan frame
-  align::FaceFrame frame;
-  std::optional<double> confidence; // when detected
-};
-
-Result<Alignment> align_scan(const Mesh& mesh, const fs::path& in, const fs::path& landmarks_file) {
-  Alignment a;
-  if (landmarks_file.empty()) {
-    Result<align::Detection> found = align::detect_landmarks(mesh);
-    if (!found) {
-      Error e = std::move(found).error();
-      e.source = in.string();
-      return e;
-    }
-    return Alignment{found->landmarks, found->frame, found->confidence};
-  }
+// A scan's alignment: detected, or from a landmark file (ours or menpo LJSON).
+Result<align::Alignment> align_scan(const Mesh& mesh, const fs::path& in, const fs::path& landmarks_file) {
+  if (landmarks_file.empty()) return align::align_scan(mesh, std::nullopt, in.string());
   Result<std::string> bytes = read_file(landmarks_file);
   if (!bytes) return bytes.error();
   Result<align::Landmarks> given = align::read_landmarks(*bytes, landmarks_file.string());
   if (!given) return given.error();
-  a.landmarks = *given;
-  if (a.landmarks.units == Units::Unknown) a.landmarks.units = align::detect_units(mesh);
-  Result<align::FaceFrame> fitted = align::frame_from_landmarks(a.landmarks, a.landmarks.units);
-  if (!fitted) {
-    Error e = std::move(fitted).error();
-    e.source = landmarks_file.string();
-    return e;
-  }
-  a.frame = *fitted;
-  a.landmarks = align::complete_landmarks(mesh, a.landmarks, a.frame); // e.g. the face's top and bottom
-  return a;
+  return align::align_scan(mesh, *std::move(given), in.string(), landmarks_file.string());
 }
 
 int run_align(const AlignRequest& request) {
@@ -228,7 +207,7 @@ int run_align(const AlignRequest& request) {
   if (!scan) return fail(scan.error());
   const Mesh& mesh = scan->mesh;
 
-  Result<Alignment> alignment = align_scan(mesh, request.in, request.landmarks);
+  Result<align::Alignment> alignment = align_scan(mesh, request.in, request.landmarks);
   if (!alignment) return fail(alignment.error());
   const auto& [landmarks, frame, confidence] = *alignment;
 
@@ -270,33 +249,56 @@ int run_align(const AlignRequest& request) {
   return 0;
 }
 
-// ---- profiles -----------------------------------------------------------------------------------------
+// ---- profiles, reconstruct, table: the options they share ---------------------------------------------
 
-struct ProfilesRequest {
-  fs::path in;
-  fs::path out;       // JSON
-  fs::path svg;       // picture
+// How a scan becomes curves: landmarks given or detected, and the slicing options.
+struct CurveArgs {
   fs::path landmarks; // given landmarks instead of detection
   std::string parameter = "arc";
   std::optional<std::size_t> points;
   slice::ProfileOptions options;
+
+  [[nodiscard]] slice::ProfileOptions profile_options() const {
+    slice::ProfileOptions o = options;
+    o.points = points;
+    o.parameter = parameter == "height" ? slice::Parameter::Height : slice::Parameter::ArcLength;
+    return o;
+  }
 };
 
-int run_profiles(ProfilesRequest request) {
-  Notes notes;
-  Result<formats::LoadedMesh> scan = formats::read_mesh(request.in, {}, &notes);
-  print_notes(notes);
-  if (!scan) return fail(scan.error());
-  Result<Alignment> alignment = align_scan(scan->mesh, request.in, request.landmarks);
-  if (!alignment) return fail(alignment.error());
+// A scan read and aligned, or the reason it could not be.
+struct AlignedScan {
+  formats::LoadedMesh scan;
+  align::Alignment alignment;
+};
 
-  const Mesh canonical = align::to_canonical(scan->mesh, alignment->frame);
-  request.options.points = request.points;
-  request.options.parameter =
-      request.parameter == "height" ? slice::Parameter::Height : slice::Parameter::ArcLength;
+Result<AlignedScan> read_and_align(const fs::path& in, const fs::path& landmarks) {
+  Notes notes;
+  Result<formats::LoadedMesh> scan = formats::read_mesh(in, {}, &notes);
+  print_notes(notes);
+  if (!scan) return scan.error();
+  Result<align::Alignment> alignment = align_scan(scan->mesh, in, landmarks);
+  if (!alignment) return alignment.error();
+  return AlignedScan{std::move(scan).value(), std::move(alignment).value()};
+}
+
+// ---- profiles -----------------------------------------------------------------------------------------
+
+struct ProfilesRequest {
+  fs::path in;
+  fs::path out; // JSON
+  fs::path svg; // picture
+  CurveArgs curves;
+};
+
+int run_profiles(const ProfilesRequest& request) {
+  Result<AlignedScan> aligned = read_and_align(request.in, request.curves.landmarks);
+  if (!aligned) return fail(aligned.error());
+  const align::Alignment& alignment = aligned->alignment;
+  const Mesh canonical = align::to_canonical(aligned->scan.mesh, alignment.frame);
   Result<slice::ProfileSet> set =
-      slice::extract_profiles(canonical, align::to_canonical(alignment->landmarks, alignment->frame),
-                              alignment->frame, request.options);
+      slice::extract_profiles(canonical, align::to_canonical(alignment.landmarks, alignment.frame),
+                              alignment.frame, request.curves.profile_options());
   if (!set) {
     Error e = std::move(set).error();
     e.source = request.in.string();
@@ -316,11 +318,130 @@ int run_profiles(ProfilesRequest request) {
   if (!request.svg.empty())
     if (Result<void> ok = write_file_atomic(request.svg, svg); !ok) return fail(ok.error());
   fmt::print("{}: {} curves at x = {:.1f} .. {:.1f} mm, y = {:.1f} .. {:.1f} mm, K = {} points ({:.1f} % of "
-             "{} raw), "
-             "4 evaluation profiles -> {}\n",
+             "{} raw), 4 evaluation profiles -> {}\n",
              request.in.string(), set->curves.size(), set->curves.front().x, set->curves.back().x,
              set->height_range[0], set->height_range[1], set->k, 100.0 * set->ratio, set->reference_points,
              request.out.string());
+  return 0;
+}
+
+// ---- reconstruct ---------------------------------------------------------------------------------------
+
+// How curves become a surface.
+struct SurfaceArgs {
+  std::string scheme = "spline";
+  std::string spacing = "physical";
+  pde::Options options;
+
+  [[nodiscard]] pde::Options pde_options() const {
+    pde::Options o = options;
+    o.scheme = pde::scheme_from_string(scheme).value_or(pde::Scheme::Spline);
+    o.spacing = spacing == "physical" ? pde::Spacing::Physical : pde::Spacing::Uniform;
+    return o;
+  }
+};
+
+struct ReconstructRequest {
+  fs::path in;
+  fs::path out;
+  fs::path profiles; // the curves as JSON too
+  CurveArgs curves;
+  SurfaceArgs surface;
+  std::vector<std::size_t> resolution; // {v} or {u, v}
+  formats::WriteOptions write;
+};
+
+int run_reconstruct(const ReconstructRequest& request) {
+  Result<AlignedScan> aligned = read_and_align(request.in, request.curves.landmarks);
+  if (!aligned) return fail(aligned.error());
+  compare::ReconstructOptions options{.profiles = request.curves.profile_options(),
+                                      .pde = request.surface.pde_options()};
+  if (request.resolution.size() == 1) options.resolution = compare::Resolution{0, request.resolution[0]};
+  if (request.resolution.size() == 2)
+    options.resolution = compare::Resolution{request.resolution[0], request.resolution[1]};
+  Result<compare::Reconstruction> made =
+      compare::reconstruct(aligned->scan.mesh, aligned->alignment, options, request.in.string());
+  if (!made) return fail(made.error());
+  const Mesh canonical_scan = align::to_canonical(aligned->scan.mesh, aligned->alignment.frame);
+  Result<compare::Fidelity> fidelity =
+      compare::measure_fidelity(canonical_scan, made->profiles, made->canonical);
+
+  Notes notes;
+  if (!request.profiles.empty())
+    if (Result<void> ok = write_file_atomic(request.profiles, slice::write_profiles_json(made->profiles));
+        !ok)
+      return fail(ok.error());
+  Result<std::size_t> written = formats::write_mesh(made->scan, request.out, request.write, &notes);
+  print_notes(notes);
+  if (!written) return fail(written.error());
+
+  const slice::ProfileSet& p = made->profiles;
+  const pde::Surface& s = made->surface;
+  fmt::print("{}: {} curves x {} points ({:.1f} % of {} raw), {} scheme, N = {} modes{}, a = {:.3f}\n",
+             request.in.string(), p.curves.size(), p.k, 100.0 * p.ratio, p.reference_points,
+             pde::to_string(s.scheme()), s.modes(), s.has_remainder() ? " + remainder" : "", s.smoothing());
+  fmt::print("{}: {} x {} grid, {} vertices, {} triangles, {} bytes, in the scan's frame ({})\n",
+             request.out.string(), made->grid.u, made->grid.v, made->scan.vertex_count(),
+             made->scan.triangle_count(), *written, to_string(made->scan.units));
+  if (fidelity) {
+    const metrics::DistanceStats& d = fidelity->surface.both;
+    fmt::print("fidelity (mm, face region): profile error {:.3f} (symmetry {:.3f}, eyes {:.3f}, diagonals "
+               "{:.3f} / {:.3f}); surface distance mean {:.3f}, RMS {:.3f}, p95 {:.3f}, max {:.2f}\n",
+               fidelity->mean_profile_error, fidelity->profile_error[0], fidelity->profile_error[1],
+               fidelity->profile_error[2], fidelity->profile_error[3], d.mean, d.rms, d.p95, d.max);
+  } else {
+    fmt::print(stderr, "pdeface: note: fidelity not measured: {}\n", fidelity.error().message);
+  }
+  return 0;
+}
+
+// ---- table ---------------------------------------------------------------------------------------------
+
+struct TableRequest {
+  std::vector<fs::path> in;
+  fs::path out; // Markdown; stdout when empty
+  fs::path csv;
+  std::vector<double> ratios{compare::kPaperRatios.begin(), compare::kPaperRatios.end()};
+  std::vector<std::string> schemes{"spline", "paper", "patch4"};
+  CurveArgs curves;
+  SurfaceArgs surface;
+};
+
+int run_table(const TableRequest& request) {
+  compare::TableOptions options{.ratios = request.ratios,
+                                .schemes = {},
+                                .profiles = request.curves.profile_options(),
+                                .pde = request.surface.pde_options()};
+  for (const std::string& name : request.schemes)
+    options.schemes.push_back(pde::scheme_from_string(name).value_or(pde::Scheme::Spline));
+  std::vector<compare::TableRow> rows;
+  for (const fs::path& in : request.in) {
+    Result<AlignedScan> aligned = read_and_align(in, {});
+    if (!aligned) return fail(aligned.error());
+    Result<std::vector<compare::TableRow>> scan_rows =
+        compare::table_rows(aligned->scan.mesh, aligned->alignment, options, in.filename().string());
+    if (!scan_rows) {
+      Error e = std::move(scan_rows).error();
+      e.source = in.string();
+      return fail(e);
+    }
+    for (const compare::TableRow& r : *scan_rows)
+      if (!r.fidelity)
+        fmt::print(stderr, "pdeface: note: {}: {:g} %, {}: {}\n", in.string(), 100 * r.ratio,
+                   pde::to_string(r.scheme), r.failure);
+    rows.insert(rows.end(), scan_rows->begin(), scan_rows->end());
+  }
+  const std::string markdown = compare::table_markdown(rows);
+  if (!request.csv.empty())
+    if (Result<void> ok = write_file_atomic(request.csv, compare::table_csv(rows)); !ok)
+      return fail(ok.error());
+  if (request.out.empty()) {
+    fmt::print("{}", markdown);
+  } else {
+    if (Result<void> ok = write_file_atomic(request.out, markdown); !ok) return fail(ok.error());
+    fmt::print("{} scans x {} ratios x {} schemes -> {}\n", request.in.size(), request.ratios.size(),
+               options.schemes.size(), request.out.string());
+  }
   return 0;
 }
 
@@ -333,6 +454,42 @@ void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
       ->capture_default_str();
   cmd->add_flag("--draco", write.draco_in_gltf, "GLB output: compress with KHR_draco_mesh_compression");
   cmd->add_flag("--ascii", write.ascii, "PLY and STL output: ASCII instead of binary");
+}
+
+void add_curve_options(CLI::App* cmd, CurveArgs& curves, bool with_landmarks = true) {
+  if (with_landmarks)
+    cmd->add_option("--landmarks", curves.landmarks,
+                    "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
+        ->check(CLI::ExistingFile);
+  cmd->add_option("--ratio", curves.options.ratio, "Sampling ratio: K = ratio x raw points (0.05..0.6)")
+      ->capture_default_str();
+  cmd->add_option("--points", curves.points, "Points per curve K, instead of the ratio (>= 4)");
+  cmd->add_option("--curves", curves.options.planes.curves,
+                  "Number of curves: 3 x patches + 1, odd patches (4, 10, 16, 22, 28, ...)")
+      ->capture_default_str();
+  cmd->add_option("--parameter", curves.parameter, "Spline parameter: arc (length) or height")
+      ->check(CLI::IsMember({"arc", "height"}))
+      ->capture_default_str();
+  cmd->add_option("--max-gap", curves.options.section.max_gap_mm, "Longest hole bridged, mm")
+      ->check(CLI::Range(0.0, 100.0))
+      ->capture_default_str();
+}
+
+void add_surface_options(CLI::App* cmd, SurfaceArgs& surface, bool with_scheme = true) {
+  if (with_scheme)
+    cmd->add_option("--scheme", surface.scheme,
+                    "spline (C2 through every curve), paper (the paper's patches) or patch4 (four positions "
+                    "per patch, refused where unstable)")
+        ->check(CLI::IsMember({"spline", "paper", "patch4"}))
+        ->capture_default_str();
+  cmd->add_option("--modes", surface.options.modes, "Fourier modes N (default: all, K - 1)");
+  cmd->add_option("--smoothing", surface.options.smoothing,
+                  "Smoothing parameter a (default: isotropic, pi W / L; 1 as in the paper)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--spacing", surface.spacing,
+                  "Curve positions in u: physical (by the planes' spacing) or uniform (the paper)")
+      ->check(CLI::IsMember({"uniform", "physical"}))
+      ->capture_default_str();
 }
 
 } // namespace
@@ -410,25 +567,50 @@ int main(int argc, char** argv) {
   profiles_cmd->add_option("--svg", profiles.svg,
                            "Also write a picture: the curves over the face, and the "
                            "symmetry profile before and after fitting");
-  profiles_cmd
-      ->add_option("--landmarks", profiles.landmarks,
-                   "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
+  add_curve_options(profiles_cmd, profiles.curves);
+
+  ReconstructRequest reconstruct;
+  CLI::App* reconstruct_cmd = app.add_subcommand(
+      "reconstruct",
+      "Scan -> aligned -> profile curves -> PDE surface, written as a mesh in the scan's frame "
+      "and units; prints how far it lies from the scan");
+  reconstruct_cmd->add_option("input", reconstruct.in, "Scan (any readable format, mesh or point cloud)")
+      ->required()
       ->check(CLI::ExistingFile);
-  profiles_cmd
-      ->add_option("--ratio", profiles.options.ratio, "Sampling ratio: K = ratio x raw points (0.05..0.6)")
+  reconstruct_cmd
+      ->add_option("-o,--output", reconstruct.out, "Surface mesh to write (.glb .obj .ply .wrl ...)")
+      ->required();
+  reconstruct_cmd->add_option("--profiles", reconstruct.profiles, "Also write the curves as JSON");
+  reconstruct_cmd
+      ->add_option("--resolution", reconstruct.resolution,
+                   "Grid: V points along the face's height (across in proportion), or UxV; default about "
+                   "1 mm spacing")
+      ->delimiter('x')
+      ->expected(1, 2)
+      ->check(CLI::Range(std::size_t{2}, std::size_t{4000}));
+  add_curve_options(reconstruct_cmd, reconstruct.curves);
+  add_surface_options(reconstruct_cmd, reconstruct.surface);
+  add_write_options(reconstruct_cmd, reconstruct.write);
+
+  TableRequest table;
+  CLI::App* table_cmd = app.add_subcommand(
+      "table", "The paper's Table I on the given scans: profile error and surface distance per sampling "
+               "ratio and scheme, as Markdown (and CSV)");
+  table_cmd->add_option("input", table.in, "Scans (any readable format)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  table_cmd->add_option("-o,--output", table.out, "Markdown file to write (default: standard output)");
+  table_cmd->add_option("--csv", table.csv, "Also write every row as CSV");
+  table_cmd->add_option("--ratios", table.ratios, "Sampling ratios, comma-separated (0.05..0.6)")
+      ->delimiter(',')
+      ->check(CLI::Range(slice::kMinRatio, slice::kMaxRatio))
       ->capture_default_str();
-  profiles_cmd->add_option("--points", profiles.points, "Points per curve K, instead of the ratio (>= 4)");
-  profiles_cmd
-      ->add_option("--curves", profiles.options.planes.curves,
-                   "Number of curves: 3 x patches + 1, odd "
-                   "patches (4, 10, 16, 22, 28, ...)")
+  table_cmd->add_option("--schemes", table.schemes, "Schemes to compare, comma-separated")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"spline", "paper", "patch4"}))
       ->capture_default_str();
-  profiles_cmd->add_option("--parameter", profiles.parameter, "Spline parameter: arc (length) or height")
-      ->check(CLI::IsMember({"arc", "height"}))
-      ->capture_default_str();
-  profiles_cmd->add_option("--max-gap", profiles.options.section.max_gap_mm, "Longest hole bridged, mm")
-      ->check(CLI::Range(0.0, 100.0))
-      ->capture_default_str();
+  add_curve_options(table_cmd, table.curves, /*with_landmarks=*/false);
+  add_surface_options(table_cmd, table.surface, /*with_scheme=*/false);
 
   try {
     app.parse(argc, argv);
@@ -440,5 +622,7 @@ int main(int argc, char** argv) {
   if (sample_cmd->parsed()) return run_sample(sample);
   if (align_cmd->parsed()) return run_align(align_request);
   if (profiles_cmd->parsed()) return run_profiles(profiles);
+  if (reconstruct_cmd->parsed()) return run_reconstruct(reconstruct);
+  if (table_cmd->parsed()) return run_table(table);
   return 0;
 }

@@ -597,4 +597,25 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   return out;
 }
 
+Result<Alignment> align_scan(const Mesh& scan, std::optional<Landmarks> given, std::string_view source,
+                             std::string_view landmarks_source) {
+  if (!given) {
+    Result<Detection> found = detect_landmarks(scan);
+    if (!found) {
+      Error e = std::move(found).error();
+      e.source = source;
+      return e;
+    }
+    return Alignment{std::move(found->landmarks), found->frame, found->confidence};
+  }
+  if (given->units == Units::Unknown) given->units = detect_units(scan);
+  Result<FaceFrame> fitted = frame_from_landmarks(*given, given->units);
+  if (!fitted) {
+    Error e = std::move(fitted).error();
+    e.source = landmarks_source;
+    return e;
+  }
+  return Alignment{complete_landmarks(scan, *given, *fitted), *fitted, std::nullopt};
+}
+
 } // namespace pdeface::align

@@ -13,6 +13,9 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 
+#include <optional>
+#include <string_view>
+
 namespace pdeface::align {
 
 struct DetectOptions {
@@ -47,5 +50,20 @@ struct Detection {
 //! `given` with its missing landmarks found on the scan in the frame `frame` (which the given ones
 //! fixed): e.g. the face's top and bottom for menpo's 68 points, which have neither. Given ones are kept.
 [[nodiscard]] Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const FaceFrame& frame);
+
+//! A scan's landmarks (scan frame) and its frame, however they were found.
+struct Alignment {
+  Landmarks landmarks;
+  FaceFrame frame;
+  std::optional<double> confidence; //!< when detected
+};
+
+//! The alignment every stage starts from: detected on `scan` when `given` is empty; otherwise the frame
+//! fitted to the given landmarks (in the scan's units when they state none, `detect_units`) and the
+//! missing ones completed on the scan. Errors (with `source` set: the scan's name for detection,
+//! `landmarks_source` for given landmarks): those of `detect_landmarks` and `frame_from_landmarks`.
+[[nodiscard]] Result<Alignment> align_scan(const Mesh& scan, std::optional<Landmarks> given = std::nullopt,
+                                           std::string_view source = {},
+                                           std::string_view landmarks_source = {});
 
 } // namespace pdeface::align

@@ -1,0 +1,73 @@
+#include "pdeface/compare/reconstruct.hpp"
+
+#include "pdeface/align/frame.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pdeface::compare {
+namespace {
+
+Error named(Error error, std::string_view source) {
+  if (error.source.empty()) error.source = source;
+  return error;
+}
+
+std::size_t points_over(double length, double spacing) {
+  return std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(length / spacing)) + 1);
+}
+
+double width(const slice::ProfileSet& p) { return 2.0 * p.border_mm; }
+double height(const slice::ProfileSet& p) { return p.height_range[1] - p.height_range[0]; }
+
+} // namespace
+
+pde::Curves to_curves(const slice::ProfileSet& profiles) {
+  pde::Curves curves;
+  curves.units = Units::Millimetres;
+  curves.samples.reserve(profiles.curves.size());
+  for (const slice::ProfileCurve& c : profiles.curves) {
+    pde::Curve samples(static_cast<Eigen::Index>(c.points.size()), 3);
+    for (std::size_t k = 0; k < c.points.size(); ++k)
+      samples.row(static_cast<Eigen::Index>(k)) = c.points[k].transpose();
+    curves.samples.push_back(std::move(samples));
+  }
+  return curves;
+}
+
+Resolution resolution_for(const slice::ProfileSet& profiles, double spacing_mm) {
+  return {points_over(width(profiles), spacing_mm), points_over(height(profiles), spacing_mm)};
+}
+
+Resolution resolution_for(const slice::ProfileSet& profiles, std::size_t v) {
+  v = std::max<std::size_t>(v, 2);
+  const double spacing = height(profiles) / static_cast<double>(v - 1);
+  return {points_over(width(profiles), spacing), v};
+}
+
+Result<pde::Surface> surface_from(const slice::ProfileSet& profiles, const pde::Options& options,
+                                  std::string_view source) {
+  return pde::Surface::build(to_curves(profiles), options, source);
+}
+
+Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& alignment,
+                                   const ReconstructOptions& options, std::string_view source) {
+  const Mesh canonical = align::to_canonical(scan, alignment.frame);
+  Result<slice::ProfileSet> profiles =
+      slice::extract_profiles(canonical, align::to_canonical(alignment.landmarks, alignment.frame),
+                              alignment.frame, options.profiles);
+  if (!profiles) return named(std::move(profiles).error(), source);
+  Result<pde::Surface> surface = surface_from(*profiles, options.pde, source);
+  if (!surface) return named(std::move(surface).error(), source);
+
+  Resolution grid = options.resolution.value_or(resolution_for(*profiles, options.grid_spacing_mm));
+  if (grid.u == 0) grid = resolution_for(*profiles, grid.v);
+  grid = {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
+  Mesh mesh = surface->mesh(grid.u, grid.v);
+  mesh.name = scan.name.empty() ? std::string("pde surface") : scan.name + " (pde surface)";
+  Mesh in_scan = align::to_scan(mesh, alignment.frame);
+  return Reconstruction{std::move(profiles).value(), std::move(surface).value(), grid, std::move(mesh),
+                        std::move(in_scan)};
+}
+
+} // namespace pdeface::compare
