@@ -1,5 +1,7 @@
 // The CLI driven as a user drives it: exit codes, what goes to stdout and stderr, files left behind.
 
+#include "pdeface/core/sample_face.hpp"
+#include "pdeface/formats/formats.hpp"
 #include "pdeface_test.hpp"
 
 #include <nlohmann/json.hpp>
@@ -58,7 +60,7 @@ TEST_F(Cli, VersionAndHelp) {
   Outcome v = run({"--version"});
   EXPECT_EQ(v.exit_code, 0);
   EXPECT_NE(v.out.find("pdeface 0."), std::string::npos);
-  for (const char* cmd : {"info", "convert", "sample", "align", "profiles"}) {
+  for (const char* cmd : {"info", "convert", "sample", "align", "profiles", "reconstruct", "table"}) {
     Outcome h = run({cmd, "--help"});
     EXPECT_EQ(h.exit_code, 0) << cmd;
     EXPECT_NE(h.out.find("Usage"), std::string::npos) << cmd;
@@ -255,6 +257,99 @@ TEST_F(Cli, ProfilesFailsCleanlyAndWritesNothing) {
   Outcome usage = run({"profiles", path("face.ply"), "-o", path("out.json"), "--parameter", "index"});
   EXPECT_EQ(usage.exit_code, 2);
   EXPECT_EQ(files(), before);
+}
+
+TEST_F(Cli, ReconstructWritesTheSurfaceInTheScansUnits) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  Mesh metres = sample_face(); // the scan stated in metres
+  for (Vec3& p : metres.positions)
+    p /= 1000.0;
+  metres.units = Units::Metres;
+  ASSERT_TRUE(formats::write_mesh(metres, work_ / "face.glb"));
+  Outcome r = run({"reconstruct", path("face.glb"), "-o", path("surface.ply"), "--profiles",
+                   path("curves.json"), "--resolution", "60x80"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(lines(r.out), 3U) << r.out;
+  EXPECT_NE(r.out.find("28 curves"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("spline scheme"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("60 x 80 grid, 4800 vertices"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("profile error"), std::string::npos) << r.out;
+  const auto curves = nlohmann::json::parse(slurp(work_ / "curves.json"));
+  EXPECT_EQ(curves["curves"].size(), 28U);
+  Outcome info = run({"info", "--json", path("surface.ply")});
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto j = nlohmann::json::parse(info.out)[0];
+  EXPECT_EQ(j["vertices"], 4800);
+  EXPECT_EQ(j["triangles"], 2 * 59 * 79);
+  EXPECT_EQ(j["units"], "m");
+  EXPECT_LT(j["bbox"]["size"][0].get<double>(), 0.3); // a face in metres, not millimetres
+
+  Outcome paper = run({"reconstruct", path("face.ply"), "-o", path("paper.obj"), "--scheme", "paper",
+                       "--smoothing", "1", "--spacing", "uniform", "--ratio", "0.2", "--modes", "10"});
+  ASSERT_EQ(paper.exit_code, 0) << paper.err;
+  EXPECT_NE(paper.out.find("paper scheme, N = 10 modes + remainder, a = 1.000"), std::string::npos)
+      << paper.out;
+}
+
+TEST_F(Cli, ReconstructFailsCleanlyAndWritesNothing) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  const std::size_t before = files();
+  for (const auto& [args, expect] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--scheme", "patch4", "--smoothing", "50"}, "patch4 would amplify"},
+           {{"--ratio", "0.01"}, "5 % to 60 %"},
+           {{"--modes", "5000"}, "modes asked for"}}) {
+    std::vector<std::string> cmd{"reconstruct",   path("face.ply"), "-o",
+                                 path("out.glb"), "--profiles",     path("out.json")};
+    cmd.insert(cmd.end(), args.begin(), args.end());
+    Outcome r = run(cmd);
+    EXPECT_EQ(r.exit_code, 1) << args[0];
+    EXPECT_EQ(lines(r.err), 1U) << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("face.ply"), std::string::npos) << r.err;
+    EXPECT_EQ(files(), before) << "no output after " << args[0];
+  }
+  for (const std::vector<std::string>& args : {std::vector<std::string>{"--resolution", "1x5"},
+                                               {"--resolution", "10x10x10"},
+                                               {"--scheme", "bezier"}}) {
+    std::vector<std::string> cmd{"reconstruct", path("face.ply"), "-o", path("out.glb")};
+    cmd.insert(cmd.end(), args.begin(), args.end());
+    EXPECT_EQ(run(cmd).exit_code, 2) << args[1];
+  }
+  // Not a face at all.
+  std::ofstream(work_ / "flat.obj") << "v 0 0 0\nv 100 0 0\nv 0 100 0\nv 100 100 0\nf 1 2 3\nf 2 4 3\n";
+  Outcome flat = run({"reconstruct", path("flat.obj"), "-o", path("out.glb")});
+  EXPECT_EQ(flat.exit_code, 1);
+  EXPECT_NE(flat.err.find("flat.obj"), std::string::npos) << flat.err;
+  EXPECT_EQ(files(), before + 1);
+}
+
+TEST_F(Cli, TableWritesMarkdownAndCsv) {
+  ASSERT_EQ(run({"sample", path("a.ply")}).exit_code, 0);
+  ASSERT_EQ(run({"sample", "--seed", "3", path("b.obj")}).exit_code, 0);
+  Outcome r = run({"table", path("a.ply"), path("b.obj"), "--ratios", "0.05,0.2", "--schemes", "spline,paper",
+                   "-o", path("t.md"), "--csv", path("t.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("2 scans x 2 ratios x 2 schemes"), std::string::npos) << r.out;
+  const std::string md = slurp(work_ / "t.md");
+  EXPECT_NE(md.find("| ratio | K | spline | paper |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| 20 % |"), std::string::npos) << md;
+  EXPECT_EQ(lines(slurp(work_ / "t.csv")), 1U + 2 * 2 * 2);
+
+  Outcome out = run({"table", path("a.ply"), "--ratios", "0.1", "--schemes", "spline"});
+  ASSERT_EQ(out.exit_code, 0) << out.err;
+  EXPECT_TRUE(out.out.starts_with("# Profile error")) << out.out;
+}
+
+TEST_F(Cli, TableFailsOnAnyBadScanAndWritesNothing) {
+  ASSERT_EQ(run({"sample", path("a.ply")}).exit_code, 0);
+  std::ofstream(work_ / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 3\n";
+  const std::size_t before = files();
+  Outcome r = run({"table", path("a.ply"), path("broken.ply"), "-o", path("t.md"), "--csv", path("t.csv")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("broken.ply"), std::string::npos) << r.err;
+  EXPECT_EQ(files(), before);
+  EXPECT_EQ(run({"table", path("a.ply"), "--ratios", "0.7"}).exit_code, 2);
+  EXPECT_EQ(run({"table", path("a.ply"), "--schemes", "spline,nurbs"}).exit_code, 2);
 }
 
 } // namespace
