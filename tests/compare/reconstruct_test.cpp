@@ -124,6 +124,7 @@ TEST(Fidelity, IsZeroForTheScanItselfAndSeesAShift) {
   ASSERT_TRUE(same) << same.error().message;
   for (double e : same->profile_error)
     EXPECT_LT(e, 1e-9);
+  EXPECT_LT(same->curve_error, 1e-9);
   EXPECT_LT(same->surface.both.max, 1e-9);
 
   Mesh shifted = canonical;
@@ -135,9 +136,35 @@ TEST(Fidelity, IsZeroForTheScanItselfAndSeesAShift) {
     EXPECT_GT(e, 0.5);
     EXPECT_LE(e, 1.0 + 1e-9);
   }
+  EXPECT_GT(off->curve_error, 0.5);
+  EXPECT_LE(off->curve_error, 1.0 + 1e-9);
   EXPECT_GT(off->surface.both.mean, 0.5);
   EXPECT_LE(off->surface.both.mean, 1.0 + 1e-9);
   EXPECT_GT(off->surface.diagonal, 100.0);
+}
+
+// A reconstruction that stops short is measured where it exists; one with nothing on a plane is an error.
+TEST(Fidelity, AShortReconstructionIsMeasuredWhereItExists) {
+  const Mesh canonical = align::to_canonical(face(), alignment().frame);
+  const slice::ProfileSet& p = spline().profiles;
+  Mesh upper = canonical; // the face above the mouth only
+  std::erase_if(upper.triangles, [&](const Triangle& t) {
+    return std::ranges::any_of(t, [&](std::uint32_t v) { return canonical.positions[v].y() < -30.0; });
+  });
+  const Result<Fidelity> short_of = measure_fidelity(canonical, p, upper);
+  ASSERT_TRUE(short_of) << short_of.error().message;
+  EXPECT_LT(short_of->profile_error[0], 1e-9); // what there is lies on the original
+  EXPECT_LT(short_of->surface.b_to_a.max, 1e-9);
+  EXPECT_GT(short_of->surface.a_to_b.max, 10.0); // the scan's chin is far from it
+
+  Mesh elsewhere = canonical;
+  for (Vec3& q : elsewhere.positions)
+    q.x() += 1000.0;
+  const Result<Fidelity> none = measure_fidelity(canonical, p, elsewhere);
+  ASSERT_FALSE(none);
+  EXPECT_EQ(none.error().code, ErrorCode::NoFace);
+  EXPECT_NE(none.error().message.find("symmetry evaluation profile"), std::string::npos)
+      << none.error().message;
 }
 
 TEST(Fidelity, TheFaceRegionIsTheCurvesBox) {

@@ -21,7 +21,10 @@ struct Fidelity {
   //! The paper's profile error (mm) of each evaluation profile, in the order of `ProfileSet::evaluation`
   //! (symmetry, eyes, diagonal up, diagonal down).
   std::array<double, 4> profile_error{};
-  double mean_profile_error = 0.0;   //!< their mean: the paper's Table I figure
+  double mean_profile_error = 0.0; //!< their mean: the paper's Table I figure
+  //! The same measure on the planes of the curves themselves (mean over the curves): what fitting and
+  //! resampling each profile to K points lost, without what lies between the curves.
+  double curve_error = 0.0;
   metrics::TwoSidedDistance surface; //!< mm, within `face_region`
 };
 
@@ -31,8 +34,10 @@ struct Fidelity {
 [[nodiscard]] Box face_region(const slice::ProfileSet& profiles, double depth_margin_mm);
 
 //! Compares `reconstruction` (canonical frame, e.g. `Reconstruction::canonical`) with `scan` (the scan in
-//! the canonical frame) on the planes and region of `profiles`. Errors: `NoFace` when the reconstruction
-//! cannot supply an evaluation profile (it is named), `InvalidArgument` when no sample falls in the region.
+//! the canonical frame) on the planes and region of `profiles`: each evaluation profile of the
+//! reconstruction is its front-most cut within the original profile's extent, measured where it exists.
+//! Errors: `NoFace` when the reconstruction has no surface on an evaluation plane (it is named),
+//! `InvalidArgument` when no sample falls in the region.
 [[nodiscard]] Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& profiles,
                                                 const Mesh& reconstruction,
                                                 const FidelityOptions& options = {});
