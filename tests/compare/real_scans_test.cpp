@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace pdeface::compare {
 namespace {
 
@@ -58,6 +60,24 @@ TEST(FacefunsTable, ProfileErrorFallsAsTheRatioGrows) {
     EXPECT_LT(fine, coarse * 1.02) << (*rows)[i].ratio << " -> " << (*rows)[i + 1].ratio; // never worse
   }
   EXPECT_LT((*rows)[1].fidelity->mean_profile_error, 0.6 * (*rows)[0].fidelity->mean_profile_error);
+  // On the curves' own planes the error keeps falling with K (what the ratio controls).
+  for (std::size_t i = 0; i + 1 < rows->size(); ++i)
+    EXPECT_LT((*rows)[i + 1].fidelity->curve_error, (*rows)[i].fidelity->curve_error) << (*rows)[i].ratio;
+}
+
+// Every curve plane is measured, the border ones (on the reconstruction's very edge) too.
+TEST(FacefunsTable, EveryRowHasEveryFigure) {
+  PDEFACE_FACE_OR_SKIP(path, "facefuns_f56.ply");
+  const Result<formats::LoadedMesh> scan = formats::read_mesh(path);
+  ASSERT_TRUE(scan);
+  const align::Alignment a = align::align_scan(scan->mesh).value();
+  const Result<std::vector<TableRow>> rows = table_rows(scan->mesh, a, {.ratios = {0.05, 0.2, 0.5}});
+  ASSERT_TRUE(rows) << rows.error().to_string();
+  for (const TableRow& r : *rows) {
+    ASSERT_TRUE(r.fidelity) << r.failure;
+    EXPECT_TRUE(std::isfinite(r.fidelity->curve_error)) << r.ratio << " " << pde::to_string(r.scheme);
+    EXPECT_TRUE(std::isfinite(r.fidelity->mean_profile_error)) << r.ratio << " " << pde::to_string(r.scheme);
+  }
 }
 
 } // namespace

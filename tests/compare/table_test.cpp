@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace pdeface::compare {
@@ -39,6 +40,9 @@ TEST(Table, OneRowPerRatioAndScheme) {
     ASSERT_TRUE(r.fidelity) << r.failure;
     EXPECT_GT(r.k, 4U);
     EXPECT_GT(r.smoothing, 0.0);
+    for (double e : r.fidelity->profile_error)
+      EXPECT_TRUE(std::isfinite(e));
+    EXPECT_TRUE(std::isfinite(r.fidelity->curve_error)) << i; // the border curves are measured too
   }
   // More points per curve, smaller profile error for the spline.
   EXPECT_GT(rows()[0].fidelity->mean_profile_error, rows()[3].fidelity->mean_profile_error);

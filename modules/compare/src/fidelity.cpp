@@ -70,9 +70,10 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
 
   // The reconstruction cut by the curves' planes (its front-most part within the height range), against
   // each raw profile.
+  // The border curves lie on the reconstruction's edge: they are cut 1 µm inside it, where it surely is.
   std::vector<double> offsets;
   for (const slice::ProfileCurve& c : profiles.curves)
-    offsets.push_back(c.x);
+    offsets.push_back(std::clamp(c.x, -profiles.border_mm + 1e-3, profiles.border_mm - 1e-3));
   const std::vector<slice::Section> cuts = slice::sections(reconstruction, Vec3::UnitX(), offsets, {});
   const auto [lo, hi] = profiles.height_range;
   for (std::size_t j = 0; j < profiles.curves.size(); ++j) {
