@@ -124,7 +124,7 @@ TEST(Fidelity, IsZeroForTheScanItselfAndSeesAShift) {
   ASSERT_TRUE(same) << same.error().message;
   for (double e : same->profile_error)
     EXPECT_LT(e, 1e-9);
-  EXPECT_LT(same->curve_error, 1e-9);
+  EXPECT_LT(same->curve_error, 1e-3); // the border planes are cut 1 µm inside
   EXPECT_LT(same->surface.both.max, 1e-9);
 
   Mesh shifted = canonical;
