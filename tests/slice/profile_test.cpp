@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
 namespace pdeface::slice {
 namespace {
@@ -96,6 +97,41 @@ TEST(Profile, PointCloudSlabFollowsTheSurface) {
   }
   EXPECT_LT(worst, 0.05); // a local linear fit on the slab: second order in the spacing
   EXPECT_GT(p->points.size(), 140.0 / 0.7 / 2);
+}
+
+TEST(Profile, PointCloudHolesAreRealHolesOnly) {
+  // A scanner's cloud is not a grid: points jittered by up to 0.4 of the step, so that neighbouring
+  // points of a section are often more than a spacing apart. A cloud without holes has none to bridge
+  // (the first version counted every gap between one slab bin's point and the next: ~100 "holes" per
+  // profile of facefuns_f56_points.ply), and a real hole is one bridge about as long as the hole.
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> jitter(-0.4, 0.4);
+  auto cloud = [&](double hole_radius) {
+    Mesh m;
+    for (double y = -80.0; y <= 80.0; y += 0.7)
+      for (double x = -60.0; x <= 60.0; x += 0.7) {
+        const double px = x + 0.7 * jitter(random), py = y + 0.7 * jitter(random);
+        if (std::hypot(px - 10.0, py - 30.0) > hole_radius) m.positions.push_back({px, py, f(px, py)});
+      }
+    return m;
+  };
+  for (const Mesh& whole : {cloud(0.0), test::height_field(f, -60, 60, -80, 80, 0.7)}) {
+    const double spacing = point_spacing(whole.positions);
+    for (double c : {-41.3, 0.0, 13.3, 52.9}) {
+      Result<Profile> p =
+          clip(cloud_section(whole.positions, Plane{Vec3::UnitX(), c}, {}, spacing), {}, -70.0, 70.0);
+      ASSERT_TRUE(p) << p.error().message;
+      EXPECT_EQ(p->bridged, 0U) << "x = " << c << ", longest " << p->longest_bridge;
+    }
+  }
+  const Mesh holed = cloud(3.0);
+  Result<Profile> p =
+      clip(cloud_section(holed.positions, Plane{Vec3::UnitX(), 10.2}, {}, point_spacing(holed.positions)), {},
+           -70.0, 70.0);
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ(p->bridged, 1U);
+  EXPECT_GT(p->longest_bridge, 3.0); // the chord is 6 mm, less the slab's half-width at its ends
+  EXPECT_LT(p->longest_bridge, 7.0);
 }
 
 TEST(Profile, CoveredExtentBridgesShortGaps) {

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
+
 namespace pdeface::slice {
 namespace {
 
@@ -222,6 +224,28 @@ TEST(Profiles, JsonHoldsWhatLaterStagesNeed) {
   EXPECT_TRUE(svg.starts_with("<svg"));
   EXPECT_NE(svg.find("a &lt;title&gt; &amp; more"), std::string::npos);
   EXPECT_EQ(std::count(svg.begin(), svg.end(), '\n') > 40, true);
+}
+
+TEST(Profiles, SvgCaptionsFitThePicture) {
+  // Every caption ends inside the picture's view box, estimated at 0.55 em a character (sans-serif);
+  // the side view's caption once ran 40 units past the right edge.
+  Result<ProfileSet> set = extract(face());
+  ASSERT_TRUE(set);
+  const std::string svg = profiles_svg(face(), *set, {.title = "facefuns_f18.ply: 28 curves, K = 27"});
+  double box_x = 0.0, box_width = 0.0;
+  ASSERT_EQ(std::sscanf(svg.c_str(), "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"%lf %*f %lf",
+                        &box_x, &box_width),
+            2);
+  std::size_t texts = 0;
+  for (std::size_t at = svg.find("<text "); at != std::string::npos; at = svg.find("<text ", at + 1)) {
+    double x = 0.0, size = 0.0;
+    ASSERT_EQ(std::sscanf(svg.c_str() + at, "<text x=\"%lf\" y=\"%*f\" font-size=\"%lf\"", &x, &size), 2);
+    const std::size_t open = svg.find('>', at) + 1, close = svg.find("</text>", open);
+    const std::string caption = svg.substr(open, close - open);
+    EXPECT_LE(x + 0.55 * size * static_cast<double>(caption.size()), box_x + box_width) << caption;
+    ++texts;
+  }
+  EXPECT_EQ(texts, 4U); // front, side (two lines), title
 }
 
 } // namespace

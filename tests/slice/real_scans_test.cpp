@@ -43,7 +43,11 @@ TEST_P(RealScan, Gives28ProfilesAndTheEvaluationProfiles) {
     EXPECT_EQ(c.raw.front().y(), lo) << c.feature;
     EXPECT_EQ(c.raw.back().y(), hi) << c.feature;
     EXPECT_EQ(c.points.size(), set->k);
+    EXPECT_NEAR(c.points.front().y(), lo, 1e-9) << c.feature; // the fitted curve keeps the range too
+    EXPECT_NEAR(c.points.back().y(), hi, 1e-9) << c.feature;
     EXPECT_GE(c.raw.size(), 60U) << c.feature; // real sections, not a few bridged points
+    // Holes are the scan's (the open mouth, a gap in the hair), not the point cloud's sampling.
+    EXPECT_LE(c.bridged, 10U) << c.feature;
   }
   // From below the mouth to above the eyes.
   EXPECT_LT(lo, std::min(landmarks[Landmark::MouthLeft]->y(), landmarks[Landmark::MouthRight]->y()) - 5.0);
@@ -71,6 +75,40 @@ TEST_P(RealScan, Gives28ProfilesAndTheEvaluationProfiles) {
       ++n;
     }
   EXPECT_LT(sum / static_cast<double>(n), 1.0);
+}
+
+TEST(RealScanFit, ArcLengthFitsBetterThanHeight) {
+  // docs/slice.md's comparison on facefuns_f18 at 10 % (K = 27): the raw points' mean distance to the
+  // fitted spline (0.15 vs 0.22 mm) and the K points' largest distance to the raw profile (1.1 vs 2.6 mm).
+  PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
+  Result<formats::LoadedMesh> scan = formats::read_mesh(path);
+  ASSERT_TRUE(scan) << scan.error().to_string();
+  Result<align::Detection> found = align::detect_landmarks(scan->mesh);
+  ASSERT_TRUE(found) << found.error().to_string();
+  const Mesh canonical = align::to_canonical(scan->mesh, found->frame);
+  const align::Landmarks landmarks = align::to_canonical(found->landmarks, found->frame);
+  std::array<double, 2> raw_mean{}, k_max{};
+  for (Parameter parameter : {Parameter::ArcLength, Parameter::Height}) {
+    Result<ProfileSet> set = extract_profiles(canonical, landmarks, found->frame, {.parameter = parameter});
+    ASSERT_TRUE(set) << set.error().to_string();
+    const auto i = static_cast<std::size_t>(parameter == Parameter::Height);
+    std::size_t n = 0;
+    for (const ProfileCurve& c : set->curves) {
+      const std::vector<Vec3> dense =
+          fit_spline(c.raw, {.parameter = parameter, .controls = set->k})->resample(4000);
+      for (const Vec3& p : c.raw) {
+        raw_mean[i] += distance_to(p, dense);
+        ++n;
+      }
+      for (const Vec3& p : c.points)
+        k_max[i] = std::max(k_max[i], distance_to(p, c.raw));
+    }
+    raw_mean[i] /= static_cast<double>(n);
+  }
+  EXPECT_LT(raw_mean[0], 0.2);
+  EXPECT_LT(raw_mean[0], 0.8 * raw_mean[1]);
+  EXPECT_LT(k_max[0], 1.5);
+  EXPECT_LT(k_max[0], 0.6 * k_max[1]);
 }
 
 INSTANTIATE_TEST_SUITE_P(Faces, RealScan,

@@ -109,6 +109,24 @@ TEST(Spline, ResampleIsUniformInTheParameterAndKeepsTheEnds) {
     EXPECT_LT(p.norm(), 80.0);
 }
 
+TEST(Spline, TheEndsAreThePointsEnds) {
+  // A rough profile (a ±0.8 mm zigzag on the smooth curve, as a scan's section is near the jaw) fitted
+  // with few control points: the least-squares ends used to land up to ~1 mm off the first and last
+  // points, so the fitted curves missed the common height range they were clipped to.
+  std::vector<Vec3> rough = samples(120);
+  for (std::size_t i = 0; i < rough.size(); ++i)
+    rough[i].z() += i % 2 == 0 ? 0.8 : -0.8;
+  rough.back().z() += 3.0; // and a last point off the trend
+  for (Parameter parameter : {Parameter::ArcLength, Parameter::Height})
+    for (std::size_t k : {4U, 5U, 9U, 27U, 200U}) {
+      Result<Spline> s = fit_spline(rough, {.parameter = parameter, .controls = k});
+      ASSERT_TRUE(s) << k;
+      const std::vector<Vec3> out = s->resample(k);
+      EXPECT_EQ(out.front(), rough.front()) << k;
+      EXPECT_NEAR((out.back() - rough.back()).norm(), 0.0, 1e-12) << k;
+    }
+}
+
 TEST(Spline, BadFitsAreInvalidArguments) {
   const std::vector<Vec3> raw = samples(10);
   Result<Spline> three = fit_spline(raw, {.controls = 3});

@@ -179,6 +179,9 @@ Section cloud_section(std::span<const Vec3> points, const Plane& plane, const Pr
     if (q.w >= front[bin_of(q.u)] - 3.0 * spacing) members[bin_of(q.u)].push_back(&q);
 
   // One point per bin: z ≈ a + b·d + c·(u − u_bin) fitted to the bin and its neighbours, taken at d = 0.
+  // Cover: half a spacing about each bin's point; points no further apart than the slab is wide are one
+  // stretch of surface. Shorter gaps are the sampling (along a line through a cloud, neighbouring points
+  // are often more than a spacing apart), not holes.
   std::vector<std::array<double, 2>> intervals;
   const Vec3 origin = plane.offset * plane.normal;
   for (std::size_t b = 0; b < bins; ++b) {
@@ -208,7 +211,10 @@ Section cloud_section(std::span<const Vec3> points, const Plane& plane, const Pr
       if (std::abs(fitted - mean_w) <= 2.0 * spacing) w = fitted;
     }
     section.points.push_back(origin + mean_u * axes.along + w * axes.front);
-    intervals.push_back({mean_u - 0.5 * spacing, mean_u + 0.5 * spacing});
+    if (!intervals.empty() && mean_u - 0.5 * spacing - intervals.back()[1] <= 2.0 * half - spacing)
+      intervals.back()[1] = mean_u + 0.5 * spacing;
+    else
+      intervals.push_back({mean_u - 0.5 * spacing, mean_u + 0.5 * spacing});
   }
   order(section.points, axes);
   section.cover = merged(std::move(intervals));

@@ -41,7 +41,9 @@ struct Section {
 //! The same for a point cloud: the points within `slab_factor · spacing` of `plane`, projected onto it,
 //! the front-most layer kept (points more than 3 spacings behind the front of their neighbourhood go)
 //! and thinned to one point per `spacing` of height (a local linear fit in height and distance to the
-//! plane, evaluated on the plane). `spacing` is the median nearest-neighbour distance of the cloud.
+//! plane, evaluated on the plane). `spacing` is the median nearest-neighbour distance of the cloud. The
+//! cover is half a spacing about each point, and points no further apart than the slab is wide
+//! (2 · `slab_factor` · spacing) are one stretch of surface: a hole is a longer stretch without points.
 [[nodiscard]] Section cloud_section(std::span<const Vec3> points, const Plane& plane, const ProfileAxes& axes,
                                     double spacing, const SectionOptions& options = {});
 

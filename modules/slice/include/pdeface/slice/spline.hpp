@@ -48,7 +48,9 @@ private:
 
 //! The least-squares cubic spline with `options.controls` control points through the ordered `points`,
 //! taken as a polyline: a chord longer than half a knot span (a bridged hole, a jump where the front
-//! switches surfaces) contributes points along it, so more control points than points is allowed.
+//! switches surfaces) contributes points along it, so more control points than points is allowed. It
+//! passes exactly through the first and last points (its end control points), so curves clipped to one
+//! height range keep it after fitting.
 //! Errors: `InvalidArgument` when there are fewer than 4 control points or the points do not advance
 //! along the parameter.
 [[nodiscard]] Result<Spline> fit_spline(std::span<const Vec3> points, const SplineOptions& options = {});
