@@ -461,9 +461,13 @@ void add_curve_options(CLI::App* cmd, CurveArgs& curves, bool with_landmarks = t
     cmd->add_option("--landmarks", curves.landmarks,
                     "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
         ->check(CLI::ExistingFile);
-  cmd->add_option("--ratio", curves.options.ratio, "Sampling ratio: K = ratio x raw points (0.05..0.6)")
-      ->capture_default_str();
-  cmd->add_option("--points", curves.points, "Points per curve K, instead of the ratio (>= 4)");
+  CLI::Option* ratio =
+      cmd->add_option("--ratio", curves.options.ratio, "Sampling ratio: K = ratio x raw points (0.05..0.6)")
+          ->check(CLI::Range(slice::kMinRatio, slice::kMaxRatio))
+          ->capture_default_str();
+  cmd->add_option("--points", curves.points, "Points per curve K, instead of the ratio (>= 4)")
+      ->check(CLI::Range(std::size_t{4}, pde::max_samples))
+      ->excludes(ratio);
   cmd->add_option("--curves", curves.options.planes.curves,
                   "Number of curves: 3 x patches + 1, odd patches (4, 10, 16, 22, 28, ...)")
       ->capture_default_str();
