@@ -255,6 +255,7 @@ int run_align(const AlignRequest& request) {
 struct CurveArgs {
   fs::path landmarks; // given landmarks instead of detection
   std::string parameter = "arc";
+  std::string sampling = "parameter";
   std::optional<std::size_t> points;
   slice::ProfileOptions options;
 
@@ -262,6 +263,7 @@ struct CurveArgs {
     slice::ProfileOptions o = options;
     o.points = points;
     o.parameter = parameter == "height" ? slice::Parameter::Height : slice::Parameter::ArcLength;
+    o.sampling = sampling == "parameter" ? slice::Sampling::Parameter : slice::Sampling::SharedHeights;
     return o;
   }
 };
@@ -473,6 +475,11 @@ void add_curve_options(CLI::App* cmd, CurveArgs& curves, bool with_landmarks = t
       ->capture_default_str();
   cmd->add_option("--parameter", curves.parameter, "Spline parameter: arc (length) or height")
       ->check(CLI::IsMember({"arc", "height"}))
+      ->capture_default_str();
+  cmd->add_option("--sampling", curves.sampling,
+                  "Where the K points go: parameter (evenly in each curve's spline parameter) or shared (the "
+                  "same heights on every curve; better from 20 % up)")
+      ->check(CLI::IsMember({"shared", "parameter"}))
       ->capture_default_str();
   cmd->add_option("--max-gap", curves.options.section.max_gap_mm, "Longest hole bridged, mm")
       ->check(CLI::Range(0.0, 100.0))

@@ -79,6 +79,34 @@ TEST(Profiles, SampleFaceGivesTheLayout) {
   EXPECT_GT(set->central_width_mm, 92.0); // longer along the surface than the 92 mm straight across
 }
 
+// Shared heights: point k of every curve at one height, from the bottom of the range to its top.
+TEST(Profiles, SharedHeightsPutPointKOfEveryCurveAtOneHeight) {
+  Result<ProfileSet> set = extract(face(), {.ratio = 0.2, .sampling = Sampling::SharedHeights});
+  ASSERT_TRUE(set) << set.error().message;
+  EXPECT_EQ(set->sampling, Sampling::SharedHeights);
+  ASSERT_EQ(set->heights.size(), set->k);
+  EXPECT_EQ(set->heights.front(), set->height_range[0]);
+  EXPECT_EQ(set->heights.back(), set->height_range[1]);
+  for (std::size_t i = 1; i < set->k; ++i)
+    EXPECT_GT(set->heights[i], set->heights[i - 1]) << i;
+  for (const ProfileCurve& c : set->curves) {
+    ASSERT_EQ(c.points.size(), set->k);
+    for (std::size_t i = 0; i < set->k; ++i)
+      EXPECT_NEAR(c.points[i].y(), set->heights[i], 1e-3) << c.index << " " << i; // within the tabulation
+    EXPECT_EQ(c.points.front(), c.raw.front());
+    EXPECT_EQ(c.points.back(), c.raw.back());
+  }
+  // Parameter sampling (the default) does not line them up.
+  Result<ProfileSet> own = extract(face(), {.ratio = 0.2});
+  ASSERT_TRUE(own);
+  EXPECT_EQ(own->sampling, Sampling::Parameter);
+  EXPECT_TRUE(own->heights.empty());
+  double spread = 0.0;
+  for (const ProfileCurve& c : own->curves)
+    spread = std::max(spread, std::abs(c.points[own->k / 2].y() - own->curves[14].points[own->k / 2].y()));
+  EXPECT_GT(spread, 1.0);
+}
+
 TEST(Profiles, EvaluationProfilesLieInTheirPlanes) {
   Result<ProfileSet> set = extract(face());
   ASSERT_TRUE(set);
@@ -218,6 +246,7 @@ TEST(Profiles, JsonHoldsWhatLaterStagesNeed) {
   EXPECT_EQ(j["curves"][3]["points"].size(), set->k);
   EXPECT_EQ(j["points_per_curve"], set->k);
   EXPECT_EQ(j["parameter"], "arc_length");
+  EXPECT_EQ(j["sampling"], "parameter");
   EXPECT_EQ(j["evaluation"].size(), 4U);
   EXPECT_EQ(j["evaluation"][0]["points"].size(), set->evaluation[0].points.size());
   const std::string svg = profiles_svg(face(), *set, {.title = "a <title> & more"});

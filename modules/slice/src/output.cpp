@@ -49,6 +49,7 @@ std::string write_profiles_json(const ProfileSet& set) {
   j["central_width"] = set.central_width_mm;
   j["eye_height"] = set.eye_height_mm;
   j["parameter"] = to_string(set.parameter);
+  j["sampling"] = to_string(set.sampling);
   j["sampling_ratio"] = set.ratio;
   j["points_per_curve"] = set.k;
   j["reference_points"] = set.reference_points;

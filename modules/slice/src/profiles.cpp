@@ -37,7 +37,86 @@ std::size_t median(std::vector<std::size_t> v) {
   return *mid;
 }
 
+// A fitted curve tabulated densely: heights (made non-decreasing) and arc length from its start.
+struct HeightTable {
+  Spline spline;
+  std::vector<double> t, y, length;
+};
+
+HeightTable height_table(Spline spline) {
+  constexpr std::size_t dense = 2048;
+  HeightTable table{std::move(spline), {}, {}, {}};
+  Vec3 previous = table.spline.evaluate(0.0);
+  for (std::size_t i = 0; i < dense; ++i) {
+    const double t = static_cast<double>(i) / (dense - 1);
+    const Vec3 p = table.spline.evaluate(t);
+    table.t.push_back(t);
+    table.y.push_back(i == 0 ? p.y() : std::max(table.y.back(), p.y()));
+    table.length.push_back(i == 0 ? 0.0 : table.length.back() + (p - previous).norm());
+    previous = p;
+  }
+  return table;
+}
+
+// Linear interpolation of `to` at `x` in the non-decreasing `from`.
+double interpolate(const std::vector<double>& from, const std::vector<double>& to, double x) {
+  const auto hi = std::upper_bound(from.begin(), from.end(), x);
+  if (hi == from.begin()) return to.front();
+  if (hi == from.end()) return to.back();
+  const auto i = static_cast<std::size_t>(hi - from.begin());
+  const double span = from[i] - from[i - 1];
+  const double w = span > 0 ? (x - from[i - 1]) / span : 0.0;
+  return to[i - 1] + w * (to[i] - to[i - 1]);
+}
+
+// K heights from range[0] to range[1] between which the curves' arc length advances evenly (in the root
+// mean square over the curves).
+std::vector<double> shared_heights(std::span<const HeightTable> tables, std::array<double, 2> range,
+                                   std::size_t k) {
+  constexpr std::size_t grid = 1024;
+  std::vector<double> heights(grid), cumulative(grid, 0.0);
+  for (std::size_t g = 0; g < grid; ++g)
+    heights[g] = range[0] + (range[1] - range[0]) * static_cast<double>(g) / (grid - 1);
+  // Each curve's share of its arc length per height step; their root mean square leans towards the
+  // curves that are long there (the nose, the lips), which the plain mean dilutes by the outer curves:
+  // on facefuns_f18, m46 and f56 the surface lies 0.190 / 0.108 mm from the scan at 10 / 30 % on
+  // average, against 0.210 / 0.093 with the plain mean.
+  std::vector<double> squares(grid, 0.0);
+  for (const HeightTable& table : tables) {
+    double previous = 0.0;
+    for (std::size_t g = 0; g < grid; ++g) {
+      const double fraction = interpolate(table.y, table.length, heights[g]) / table.length.back();
+      if (g > 0) squares[g] += std::pow(std::max(0.0, fraction - previous), 2);
+      previous = fraction;
+    }
+  }
+  for (std::size_t g = 1; g < grid; ++g)
+    cumulative[g] = cumulative[g - 1] + std::sqrt(squares[g]);
+  for (double& c : cumulative)
+    c /= cumulative.back();
+  std::vector<double> out(k);
+  for (std::size_t i = 0; i < k; ++i)
+    out[i] = interpolate(cumulative, heights, static_cast<double>(i) / static_cast<double>(k - 1));
+  out.front() = range[0];
+  out.back() = range[1];
+  return out;
+}
+
+// The curve's points at `heights` (its spline evaluated where its height is each one).
+std::vector<Vec3> at_heights(const HeightTable& table, std::span<const double> heights) {
+  std::vector<Vec3> points;
+  for (double h : heights)
+    points.push_back(table.spline.evaluate(interpolate(table.y, table.t, h)));
+  points.front() = table.spline.evaluate(0.0); // the ends exactly, whatever the tabulation
+  points.back() = table.spline.evaluate(1.0);
+  return points;
+}
+
 } // namespace
+
+std::string_view to_string(Sampling sampling) noexcept {
+  return sampling == Sampling::SharedHeights ? "shared_heights" : "parameter";
+}
 
 namespace {
 
@@ -214,10 +293,20 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
                     "needs at least 4",
                     100.0 * options.ratio, set.reference_points, set.k));
   const SplineOptions spline{.parameter = options.parameter, .controls = set.k};
+  std::vector<HeightTable> tables;
   for (ProfileCurve& curve : set.curves) {
     Result<Spline> fitted = fit_spline(curve.raw, spline);
     if (!fitted) return about(describe(curve.index, planes[curve.index]), std::move(fitted).error());
-    curve.points = fitted->resample(set.k);
+    if (options.sampling == Sampling::Parameter)
+      curve.points = fitted->resample(set.k);
+    else
+      tables.push_back(height_table(*std::move(fitted)));
+  }
+  set.sampling = options.sampling;
+  if (options.sampling == Sampling::SharedHeights) {
+    set.heights = shared_heights(tables, range, set.k);
+    for (std::size_t j = 0; j < set.curves.size(); ++j)
+      set.curves[j].points = at_heights(tables[j], set.heights);
   }
 
   Result<std::vector<EvaluationProfile>> evaluation =
