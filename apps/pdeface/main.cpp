@@ -458,6 +458,10 @@ void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
   cmd->add_flag("--ascii", write.ascii, "PLY and STL output: ASCII instead of binary");
 }
 
+void add_input(CLI::App* cmd, fs::path& in, const std::string& description) {
+  cmd->add_option("input", in, description)->required()->check(CLI::ExistingFile);
+}
+
 void add_curve_options(CLI::App* cmd, CurveArgs& curves, bool with_landmarks = true) {
   if (with_landmarks)
     cmd->add_option("--landmarks", curves.landmarks,
@@ -524,7 +528,7 @@ int main(int argc, char** argv) {
   ConvertRequest convert;
   CLI::App* convert_cmd = app.add_subcommand(
       "convert", "Convert between formats chosen by extension: .wrl .obj .ply .off .stl .gltf .glb .drc");
-  convert_cmd->add_option("input", convert.in, "File to read")->required()->check(CLI::ExistingFile);
+  add_input(convert_cmd, convert.in, "File to read");
   convert_cmd->add_option("output", convert.out, "File to write (replaced atomically)")->required();
   convert_cmd->add_option("--from", convert.from, "Input format when the extension is misleading (e.g. ply)");
   convert_cmd->add_option("--to", convert.to, "Output format when the extension is misleading (e.g. glb)");
@@ -550,9 +554,7 @@ int main(int argc, char** argv) {
       "align",
       "Move a scan into the canonical face frame (nose tip at the origin, x to the face's left, y up, "
       "z to the viewer, mm), from detected or given landmarks");
-  align_cmd->add_option("input", align_request.in, "Scan to align (any readable format)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input(align_cmd, align_request.in, "Scan to align (any readable format)");
   align_cmd->add_option("-o,--output", align_request.out, "Aligned mesh to write (any writable format)")
       ->required();
   align_cmd
@@ -571,9 +573,7 @@ int main(int argc, char** argv) {
   CLI::App* profiles_cmd = app.add_subcommand(
       "profiles", "Slice a scan into the paper's profile curves (28 by default), fit and resample them, and "
                   "extract the 4 evaluation profiles; JSON out, SVG picture optional");
-  profiles_cmd->add_option("input", profiles.in, "Scan (any readable format, mesh or point cloud)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input(profiles_cmd, profiles.in, "Scan (any readable format, mesh or point cloud)");
   profiles_cmd->add_option("-o,--output", profiles.out, "Profiles to write as JSON")->required();
   profiles_cmd->add_option("--svg", profiles.svg,
                            "Also write a picture: the curves over the face, and the "
@@ -585,9 +585,7 @@ int main(int argc, char** argv) {
       "reconstruct",
       "Scan -> aligned -> profile curves -> PDE surface, written as a mesh in the scan's frame "
       "and units; prints how far it lies from the scan");
-  reconstruct_cmd->add_option("input", reconstruct.in, "Scan (any readable format, mesh or point cloud)")
-      ->required()
-      ->check(CLI::ExistingFile);
+  add_input(reconstruct_cmd, reconstruct.in, "Scan (any readable format, mesh or point cloud)");
   reconstruct_cmd
       ->add_option("-o,--output", reconstruct.out, "Surface mesh to write (.glb .obj .ply .wrl ...)")
       ->required();

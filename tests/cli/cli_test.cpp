@@ -34,6 +34,8 @@ std::string quote(const std::string& s) {
   return q + "'";
 }
 
+std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::ranges::count(s, '\n')); }
+
 // Runs pdeface with `args` (each quoted for the shell) in a temporary folder of its own.
 class Cli : public ::testing::Test {
 protected:
@@ -48,13 +50,21 @@ protected:
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
   }
   std::string path(std::string_view name) const { return (work_ / name).string(); }
+  // `command` + `args` fails on the data: exit 1, one line on stderr naming `file` and saying `expect`.
+  void expect_data_error(std::vector<std::string> command, const std::vector<std::string>& args,
+                         std::string_view expect, std::string_view file) {
+    command.insert(command.end(), args.begin(), args.end());
+    const Outcome r = run(command);
+    EXPECT_EQ(r.exit_code, 1) << args[0];
+    EXPECT_EQ(lines(r.err), 1U) << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(file), std::string::npos) << r.err;
+  }
   std::size_t files() const { return work_.entries(); }
 
   test::TempDir work_; // where outputs go: nothing else may appear here
   test::TempDir io_;
 };
-
-std::size_t lines(const std::string& s) { return static_cast<std::size_t>(std::ranges::count(s, '\n')); }
 
 TEST_F(Cli, VersionAndHelp) {
   Outcome v = run({"--version"});
@@ -241,14 +251,8 @@ TEST_F(Cli, ProfilesFailsCleanlyAndWritesNothing) {
   const std::size_t before = files();
   for (const auto& [args, expect] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--curves", "27"}, "3 · patches + 1"}, {{"--max-gap", "0.01"}, "plane "}}) {
-    std::vector<std::string> cmd{"profiles",       path("face.ply"), "-o",
-                                 path("out.json"), "--svg",          path("out.svg")};
-    cmd.insert(cmd.end(), args.begin(), args.end());
-    Outcome r = run(cmd);
-    EXPECT_EQ(r.exit_code, 1) << args[0];
-    EXPECT_EQ(lines(r.err), 1U) << r.err;
-    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("face.ply"), std::string::npos) << r.err;
+    expect_data_error({"profiles", path("face.ply"), "-o", path("out.json"), "--svg", path("out.svg")}, args,
+                      expect, "face.ply");
     EXPECT_EQ(files(), before) << "no output after " << args[0];
   }
   // Wrong on the command line itself: exit 2, one line.
@@ -304,14 +308,9 @@ TEST_F(Cli, ReconstructFailsCleanlyAndWritesNothing) {
   for (const auto& [args, expect] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--scheme", "patch4", "--smoothing", "50"}, "patch4 would amplify"},
            {{"--modes", "5000"}, "modes asked for"}}) {
-    std::vector<std::string> cmd{"reconstruct",   path("face.ply"), "-o",
-                                 path("out.glb"), "--profiles",     path("out.json")};
-    cmd.insert(cmd.end(), args.begin(), args.end());
-    Outcome r = run(cmd);
-    EXPECT_EQ(r.exit_code, 1) << args[0];
-    EXPECT_EQ(lines(r.err), 1U) << r.err;
-    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("face.ply"), std::string::npos) << r.err;
+    expect_data_error(
+        {"reconstruct", path("face.ply"), "-o", path("out.glb"), "--profiles", path("out.json")}, args,
+        expect, "face.ply");
     EXPECT_EQ(files(), before) << "no output after " << args[0];
   }
   for (const std::vector<std::string>& args : {std::vector<std::string>{"--resolution", "1x5"},
