@@ -391,6 +391,11 @@ int run_reconstruct(const ReconstructRequest& request) {
                "{:.3f} / {:.3f}); surface distance mean {:.3f}, RMS {:.3f}, p95 {:.3f}, max {:.2f}\n",
                fidelity->mean_profile_error, fidelity->profile_error[0], fidelity->profile_error[1],
                fidelity->profile_error[2], fidelity->profile_error[3], d.mean, d.rms, d.p95, d.max);
+    const align::FaceFrame& frame = aligned->alignment.frame;
+    fmt::print(
+        "  = mean {:.3g}, max {:.3g} {} in the scan's units; max {:.2e} of the face region's diagonal\n",
+        d.mean / frame.scale, d.max / frame.scale, to_string(made->scan.units),
+        d.max / fidelity->surface.diagonal);
   } else {
     fmt::print(stderr, "pdeface: note: fidelity not measured: {}\n", fidelity.error().message);
   }

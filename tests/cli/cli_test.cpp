@@ -280,7 +280,8 @@ TEST_F(Cli, ReconstructWritesTheSurfaceInTheScansUnits) {
   Outcome r = run({"reconstruct", path("face.glb"), "-o", path("surface.ply"), "--profiles",
                    path("curves.json"), "--resolution", "60x80"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(lines(r.out), 3U) << r.out;
+  EXPECT_EQ(lines(r.out), 4U) << r.out;
+  EXPECT_NE(r.out.find(" m in the scan's units"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("28 curves"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("spline scheme"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("60 x 80 grid, 4800 vertices"), std::string::npos) << r.out;
