@@ -1,17 +1,48 @@
-// The PDE surface: solving 28 curves (K = 30 and 300 samples) by each scheme, evaluating a 316 × 316
-// grid (99,856 vertices), triangulating it (with normals), and, for scale, encoding the same mesh as
-// binary PLY in memory. Curves: the synthetic face of tests/pde/synthetic_face.hpp.
+// The PDE surface: solving 28 curves, evaluating a 316 × 316 grid (99,856 vertices), triangulating it
+// (with normals), and writing the same mesh out, all in one process so that the ratios mean something.
 //
-//   build/benchmarks/pde_bench [--benchmark_filter=Evaluate]
+// Real curves (real_*, argument: the sampling ratio in %): facefuns_f18.ply aligned (align::align_scan),
+// sliced at 10 % (K = 27) and 60 % (K = 162), the curves solved as `pdeface reconstruct` does (spline,
+// physical spacing); the mesh encoded as GLB and as binary PLY in memory (formats::encode_mesh) and
+// written atomically to a file in the temporary folder (formats::write_mesh). The scan is read, aligned
+// and sliced once, outside the timed loops; without it these cases are skipped, saying why.
+// Synthetic curves (solve/*, evaluate/*, argument: K): the face of tests/pde/synthetic_face.hpp.
+//
+// Memory: every case pins glibc's allocator first, because on a VM a page fault costs ~10 µs and whether
+// a step's output lands on fresh pages changes its time up to 30-fold:
+//   fresh:  every block of 64 KiB or more is mapped anew, as in one `pdeface reconstruct` run, where each
+//           step first touches its output (page faults included);
+//   reused: freed memory stays in the heap, so after the first iteration only arithmetic and copying
+//           remain (a long-running process converting many faces).
+//
+//   build/benchmarks/pde_bench [--benchmark_filter=real_]          (PDEFACE_DATA=/path/to/faces)
 
+#include "pdeface/align/detect.hpp"
+#include "pdeface/align/frame.hpp"
+#include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/slice/profiles.hpp"
 
 #include "../tests/pde/synthetic_face.hpp"
 
 #include <benchmark/benchmark.h>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+#if defined(__unix__)
+#include <sys/resource.h>
+#endif
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <map>
+#include <optional>
+#include <string>
+#include <utility>
 
 namespace {
 
@@ -19,6 +50,279 @@ using namespace pdeface;
 using namespace pdeface::pde;
 
 constexpr std::size_t grid_side = 316;
+
+enum class Memory { Fresh, Reused };
+
+// See the top of the file. Without glibc the allocator is left as it is.
+void pin_allocator(Memory memory) {
+#if defined(__GLIBC__)
+  // Setting either threshold also turns off glibc's adjusting of them to the sizes freed so far.
+  if (memory == Memory::Fresh) {
+    mallopt(M_MMAP_THRESHOLD, 64 * 1024);
+    mallopt(M_TRIM_THRESHOLD, 128 * 1024);
+  } else {
+    mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024); // glibc's largest: blocks up to 32 MiB come from the heap
+    mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
+  }
+#else
+  (void)memory;
+#endif
+}
+
+// Counts the page faults of the timed loop (the counter "faults", per iteration), where the system says.
+class FaultCounter {
+public:
+  explicit FaultCounter(benchmark::State& state) : state_(state), start_(faults()) {}
+  FaultCounter(const FaultCounter&) = delete;
+  FaultCounter& operator=(const FaultCounter&) = delete;
+  ~FaultCounter() {
+    if (start_ >= 0)
+      state_.counters["faults"] = benchmark::Counter(static_cast<double>(faults() - start_ - excluded_),
+                                                     benchmark::Counter::kAvgIterations);
+  }
+  //! Runs `untimed` (between PauseTiming and ResumeTiming) without counting its faults.
+  template <class F> void exclude(F&& untimed) {
+    const long before = faults();
+    untimed();
+    excluded_ += faults() - before;
+  }
+
+private:
+  static long faults() {
+#if defined(__unix__)
+    rusage usage{};
+    if (getrusage(RUSAGE_SELF, &usage) == 0) return usage.ru_minflt + usage.ru_majflt;
+#endif
+    return -1;
+  }
+
+  benchmark::State& state_;
+  long start_;
+  long excluded_ = 0;
+};
+
+// --- Real curves ------------------------------------------------------------------------------------
+
+std::filesystem::path scan_path() {
+  const char* env = std::getenv("PDEFACE_DATA");
+  const std::filesystem::path dir = env && *env ? env : PDEFACE_DEFAULT_FACES;
+  return dir / "facefuns_f18.ply";
+}
+
+struct AlignedScan {
+  Mesh scan;
+  align::Alignment alignment;
+};
+
+// The scan read and aligned once; the reason in `why` when it cannot be.
+const AlignedScan* aligned_scan(std::string& why) {
+  static std::string error;
+  static const std::optional<AlignedScan> scan = []() -> std::optional<AlignedScan> {
+    auto loaded = formats::read_mesh(scan_path());
+    if (!loaded) {
+      error = loaded.error().to_string() + " (set PDEFACE_DATA to the faces folder)";
+      return std::nullopt;
+    }
+    auto alignment = align::align_scan(loaded->mesh, std::nullopt, scan_path().string());
+    if (!alignment) {
+      error = alignment.error().to_string();
+      return std::nullopt;
+    }
+    return AlignedScan{std::move(loaded->mesh), std::move(alignment).value()};
+  }();
+  why = error;
+  return scan ? &*scan : nullptr;
+}
+
+const pde::Options& reconstruct_options() {
+  static const pde::Options options = compare::ReconstructOptions{}.pde; // spline, physical spacing
+  return options;
+}
+
+// What the timed steps start from, at one sampling ratio: the curves, their surface and its mesh.
+struct RealCase {
+  Curves curves;
+  Surface surface;
+  Mesh mesh;
+};
+
+std::optional<RealCase> make_real_case(std::int64_t percent, std::string& why) {
+  const AlignedScan* a = aligned_scan(why);
+  if (!a) return std::nullopt;
+  slice::ProfileOptions options;
+  options.ratio = static_cast<double>(percent) / 100.0;
+  auto profiles = slice::extract_profiles(align::to_canonical(a->scan, a->alignment.frame),
+                                          align::to_canonical(a->alignment.landmarks, a->alignment.frame),
+                                          a->alignment.frame, options);
+  if (!profiles) {
+    why = profiles.error().to_string();
+    return std::nullopt;
+  }
+  Curves curves = compare::to_curves(*profiles);
+  auto surface = Surface::build(curves, reconstruct_options());
+  if (!surface) {
+    why = surface.error().to_string();
+    return std::nullopt;
+  }
+  Mesh mesh = surface->mesh(grid_side, grid_side);
+  return RealCase{std::move(curves), std::move(surface).value(), std::move(mesh)};
+}
+
+// The case for the ratio in state.range(0) (made once, with fresh memory), or nullptr after skipping
+// the benchmark with the reason. Sets the counter K.
+const RealCase* real_case(benchmark::State& state) {
+  static std::map<std::int64_t, std::pair<std::optional<RealCase>, std::string>> cache;
+  const std::int64_t percent = state.range(0);
+  auto it = cache.find(percent);
+  if (it == cache.end()) {
+    pin_allocator(Memory::Fresh);
+    std::string why;
+    std::optional<RealCase> made = make_real_case(percent, why);
+    it = cache.emplace(percent, std::pair{std::move(made), std::move(why)}).first;
+  }
+  if (!it->second.first) {
+    state.SkipWithError(("skipped, no real curves: " + it->second.second).c_str());
+    return nullptr;
+  }
+  state.counters["K"] = static_cast<double>(it->second.first->surface.sample_count());
+  return &*it->second.first;
+}
+
+void real_solve(benchmark::State& state, Memory memory) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const FaultCounter faults(state);
+  for (auto _ : state) {
+    auto s = Surface::build(c->curves, reconstruct_options());
+    if (!s) return state.SkipWithError(s.error().to_string().c_str());
+    benchmark::DoNotOptimize(s);
+  }
+}
+
+void real_evaluate(benchmark::State& state, Memory memory) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const FaultCounter faults(state);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(c->surface.evaluate(grid_side, grid_side));
+}
+
+void real_triangulate(benchmark::State& state, Memory memory) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const Grid grid = c->surface.evaluate(grid_side, grid_side);
+  FaultCounter faults(state);
+  for (auto _ : state) {
+    state.PauseTiming(); // triangulate takes the grid by value: copying it is not what is measured
+    Grid copy;
+    faults.exclude([&] { copy = grid; });
+    state.ResumeTiming();
+    benchmark::DoNotOptimize(triangulate(std::move(copy), Units::Millimetres));
+  }
+}
+
+void real_evaluate_triangulate(benchmark::State& state, Memory memory) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const FaultCounter faults(state);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(c->surface.mesh(grid_side, grid_side));
+  state.counters["vertices"] = static_cast<double>(grid_side * grid_side);
+}
+
+// The floor under producing the mesh: its three arrays allocated and filled with zeros.
+void real_mesh_memory(benchmark::State& state, Memory memory) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const FaultCounter faults(state);
+  for (auto _ : state) {
+    Mesh m;
+    m.positions.assign(c->mesh.positions.size(), Vec3::Zero());
+    m.triangles.assign(c->mesh.triangles.size(), Triangle{});
+    m.normals.assign(c->mesh.normals.size(), Vec3f::Zero());
+    benchmark::DoNotOptimize(m);
+  }
+}
+
+void real_encode(benchmark::State& state, Memory memory, const char* name) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const FaultCounter faults(state);
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    auto encoded = formats::encode_mesh(c->mesh, name);
+    if (!encoded) return state.SkipWithError(encoded.error().to_string().c_str());
+    bytes = encoded->size();
+    benchmark::DoNotOptimize(encoded);
+  }
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+
+void real_write(benchmark::State& state, Memory memory, const char* name) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const FaultCounter faults(state);
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / name;
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    auto written = formats::write_mesh(c->mesh, path);
+    if (!written) return state.SkipWithError(written.error().to_string().c_str());
+    bytes = *written;
+  }
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+  state.counters["bytes"] = static_cast<double>(bytes);
+}
+
+// Curves to a GLB file: solve, evaluate, triangulate, write (what `pdeface reconstruct` does after slicing).
+void real_curves_to_glb(benchmark::State& state, Memory memory) {
+  const RealCase* c = real_case(state);
+  if (!c) return;
+  pin_allocator(memory);
+  const FaultCounter faults(state);
+  const std::filesystem::path path = std::filesystem::temp_directory_path() / "pdeface_pde_bench_all.glb";
+  for (auto _ : state) {
+    auto s = Surface::build(c->curves, reconstruct_options());
+    if (!s) return state.SkipWithError(s.error().to_string().c_str());
+    auto written = formats::write_mesh(s->mesh(grid_side, grid_side), path);
+    if (!written) return state.SkipWithError(written.error().to_string().c_str());
+  }
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
+
+void real_encode_glb(benchmark::State& state, Memory memory) { real_encode(state, memory, "surface.glb"); }
+void real_encode_ply(benchmark::State& state, Memory memory) { real_encode(state, memory, "surface.ply"); }
+void real_write_glb(benchmark::State& state, Memory memory) {
+  real_write(state, memory, "pdeface_pde_bench.glb");
+}
+void real_write_ply(benchmark::State& state, Memory memory) {
+  real_write(state, memory, "pdeface_pde_bench.ply");
+}
+
+#define PDEFACE_REAL_BENCHMARK(function, unit)                                                               \
+  BENCHMARK_CAPTURE(function, fresh, Memory::Fresh)->Arg(10)->Arg(60)->Unit(unit);                           \
+  BENCHMARK_CAPTURE(function, reused, Memory::Reused)->Arg(10)->Arg(60)->Unit(unit)
+
+PDEFACE_REAL_BENCHMARK(real_solve, benchmark::kMicrosecond);
+PDEFACE_REAL_BENCHMARK(real_evaluate, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_triangulate, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_evaluate_triangulate, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_mesh_memory, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_encode_glb, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_encode_ply, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_write_glb, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_write_ply, benchmark::kMillisecond);
+PDEFACE_REAL_BENCHMARK(real_curves_to_glb, benchmark::kMillisecond);
+
+// --- Synthetic curves -------------------------------------------------------------------------------
 
 const Curves& curves(std::size_t samples) {
   static std::map<std::size_t, Curves> cache;
@@ -36,6 +340,9 @@ const Surface& surface(std::size_t samples) {
 
 void solve(benchmark::State& state, Options options) {
   const auto samples = static_cast<std::size_t>(state.range(0));
+  (void)curves(samples);
+  pin_allocator(Memory::Fresh);
+  const FaultCounter faults(state);
   for (auto _ : state) {
     auto s = Surface::build(curves(samples), options);
     if (!s) return state.SkipWithError(s.error().to_string().c_str());
@@ -43,39 +350,12 @@ void solve(benchmark::State& state, Options options) {
   }
 }
 
-void evaluate(benchmark::State& state) {
+void evaluate(benchmark::State& state, Memory memory) {
   const Surface& s = surface(static_cast<std::size_t>(state.range(0)));
+  pin_allocator(memory);
+  const FaultCounter faults(state);
   for (auto _ : state)
     benchmark::DoNotOptimize(s.evaluate(grid_side, grid_side));
-  state.counters["vertices"] = static_cast<double>(grid_side * grid_side);
-}
-
-void triangulate_grid(benchmark::State& state) {
-  const Grid grid = surface(30).evaluate(grid_side, grid_side);
-  for (auto _ : state)
-    benchmark::DoNotOptimize(triangulate(grid));
-}
-
-void mesh_and_ply(benchmark::State& state) {
-  const Surface& s = surface(static_cast<std::size_t>(state.range(0)));
-  std::size_t bytes = 0;
-  for (auto _ : state) {
-    auto ply = formats::encode_mesh(s.mesh(grid_side, grid_side), "surface.ply");
-    bytes = ply->size();
-    benchmark::DoNotOptimize(ply);
-  }
-  state.counters["ply_bytes"] = static_cast<double>(bytes);
-}
-
-void encode_ply(benchmark::State& state) {
-  const Mesh mesh = surface(30).mesh(grid_side, grid_side);
-  std::size_t bytes = 0;
-  for (auto _ : state) {
-    auto ply = formats::encode_mesh(mesh, "surface.ply");
-    bytes = ply->size();
-    benchmark::DoNotOptimize(ply);
-  }
-  state.counters["ply_bytes"] = static_cast<double>(bytes);
 }
 
 BENCHMARK_CAPTURE(solve, spline, Options{})->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
@@ -91,10 +371,8 @@ BENCHMARK_CAPTURE(solve, spline_13_modes_no_remainder, Options{.modes = 13, .rem
     ->Arg(30)
     ->Arg(300)
     ->Unit(benchmark::kMicrosecond);
-BENCHMARK(evaluate)->Arg(30)->Arg(300)->Unit(benchmark::kMillisecond);
-BENCHMARK(triangulate_grid)->Unit(benchmark::kMillisecond);
-BENCHMARK(encode_ply)->Unit(benchmark::kMillisecond);
-BENCHMARK(mesh_and_ply)->Arg(30)->Arg(300)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(evaluate, fresh, Memory::Fresh)->Arg(30)->Arg(300)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(evaluate, reused, Memory::Reused)->Arg(30)->Arg(300)->Unit(benchmark::kMillisecond);
 
 } // namespace
 

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -18,41 +19,87 @@ const Surface::Piece& Surface::piece_at(double u) const {
   return after == pieces_.begin() ? pieces_.front() : *(after - 1);
 }
 
+namespace {
+// The v values come in mirrored pairs v and π − v (to rounding), as on any grid spread evenly over [0, π].
+bool mirrored(std::span<const double> vs) {
+  constexpr double tolerance = 16 * std::numeric_limits<double>::epsilon();
+  for (std::size_t k = 0; k < vs.size(); ++k)
+    if (std::abs(vs[k] + vs[vs.size() - 1 - k] - std::numbers::pi) > tolerance) return false;
+  return true;
+}
+} // namespace
+
 Grid Surface::evaluate(std::span<const double> us, std::span<const double> vs, Derivative derivative) const {
   for (double u : us)
     if (!(u >= 0 && u <= u_max())) throw std::invalid_argument("pde: u outside [0, u_max()] or not finite");
   for (double v : vs)
     if (!std::isfinite(v)) throw std::invalid_argument("pde: v is not finite");
   const auto nu = static_cast<Eigen::Index>(us.size()), nv = static_cast<Eigen::Index>(vs.size());
-  const auto columns = static_cast<Eigen::Index>(columns_);
-
-  // X = Σ_n A_n(u) cos(n v): A holds A_n(U_i) (3 rows per u, xyz), T holds cos(n v_k).
-  Eigen::MatrixXd a(3 * nu, columns);
-  const int order = derivative == Derivative::U ? 1 : 0;
-  for (Eigen::Index i = 0; i < nu; ++i) {
-    const Piece& piece = piece_at(us[static_cast<std::size_t>(i)]);
-    const double t = (us[static_cast<std::size_t>(i)] - piece.start) / piece.length;
-    const double scale = order == 1 ? 1 / piece.length : 1.0;
-    Eigen::Vector4d basis;
-    for (Eigen::Index n = 0; n < columns; ++n) {
-      const auto column = static_cast<std::size_t>(n);
-      if (n == 0 || frequency(column) != frequency(column - 1)) // the remainder columns share one basis
-        basis = scale * detail::mode_basis(detail::local_m(a_, frequency(column), piece.length), t, order);
-      a.block<3, 1>(3 * i, n).noalias() = piece.coefficients.middleCols<4>(4 * n) * basis;
-    }
-  }
-  Eigen::MatrixXd trig(columns, nv);
-  for (Eigen::Index k = 0; k < nv; ++k)
-    for (Eigen::Index n = 0; n < columns; ++n) {
-      const double nd = static_cast<double>(n), angle = nd * vs[static_cast<std::size_t>(k)];
-      trig(n, k) = derivative == Derivative::V ? -nd * std::sin(angle) : std::cos(angle);
-    }
-
   Grid grid{static_cast<std::size_t>(nu), static_cast<std::size_t>(nv),
             std::vector<Vec3>(static_cast<std::size_t>(nu * nv))};
   if (grid.points.empty()) return grid;
+
+  // X = Σ_n A_n(u) cos(n v) = E + O, the sums over even and odd n. On a grid whose v come in pairs
+  // (v, π − v), cos(n(π − v)) = (−1)^n cos(n v) gives X(π − v) = E − O (for ∂X/∂v, −n sin(n v): O − E),
+  // so only the first half of the v need the products: half the arithmetic of one product over all v.
+  const bool mirror = mirrored(vs);
+  const Eigen::Index half = mirror ? (nv + 1) / 2 : nv; // v computed directly; the rest are mirrored
+  const double mirror_sign = derivative == Derivative::V ? -1.0 : 1.0;
+  const auto columns = static_cast<Eigen::Index>(columns_);
+  const Eigen::Index even_columns = (columns + 1) / 2, odd_columns = columns / 2;
+
+  // T: cos(n v_k) (or −n sin(n v_k)), even n in one matrix and odd n in the other.
+  Eigen::MatrixXd trig_even(even_columns, half), trig_odd(odd_columns, half);
+  for (Eigen::Index k = 0; k < half; ++k)
+    for (Eigen::Index n = 0; n < columns; ++n) {
+      const double nd = static_cast<double>(n), angle = nd * vs[static_cast<std::size_t>(k)];
+      (n % 2 == 0 ? trig_even(n / 2, k) : trig_odd(n / 2, k)) =
+          derivative == Derivative::V ? -nd * std::sin(angle) : std::cos(angle);
+    }
+
+  // A: A_n(U_i), 3 rows per u (xyz), for a block of u at a time, and the products for a block of v at a
+  // time, so that every temporary (Eigen's packed copies included) stays small, in cache and on memory
+  // already touched, whatever the grid's size and K.
+  constexpr Eigen::Index block = 16, chunk = 32;
+  const Eigen::Index rows = 3 * std::min(block, nu), width = std::min(chunk, half);
+  Eigen::MatrixXd a_even(rows, even_columns), a_odd(rows, odd_columns), even(rows, width), odd(rows, width);
   // Column-major 3nu × nv is exactly the points' memory: point (i, k) at k·nu + i, xyz interleaved.
-  Eigen::Map<Eigen::MatrixXd>(grid.points.data()->data(), 3 * nu, nv).noalias() = a * trig;
+  Eigen::Map<Eigen::MatrixXd> out(grid.points.data()->data(), 3 * nu, nv);
+  const int order = derivative == Derivative::U ? 1 : 0;
+  for (Eigen::Index first = 0; first < nu; first += block) {
+    const Eigen::Index count = std::min(block, nu - first), r = 3 * count;
+    for (Eigen::Index i = 0; i < count; ++i) {
+      const double u = us[static_cast<std::size_t>(first + i)];
+      const Piece& piece = piece_at(u);
+      const double t = (u - piece.start) / piece.length;
+      const double scale = order == 1 ? 1 / piece.length : 1.0;
+      Eigen::Vector4d basis;
+      for (Eigen::Index n = 0; n < columns; ++n) {
+        const auto column = static_cast<std::size_t>(n);
+        if (n == 0 || frequency(column) != frequency(column - 1)) // the remainder columns share one basis
+          basis = scale * detail::mode_basis(detail::local_m(a_, frequency(column), piece.length), t, order);
+        (n % 2 == 0 ? a_even : a_odd).block<3, 1>(3 * i, n / 2).noalias() =
+            piece.coefficients.middleCols<4>(4 * n) * basis;
+      }
+    }
+    for (Eigen::Index k0 = 0; k0 < half; k0 += width) {
+      const Eigen::Index w = std::min(width, half - k0);
+      auto e = even.topLeftCorner(r, w);
+      auto o = odd.topLeftCorner(r, w);
+      e.noalias() = a_even.topRows(r) * trig_even.middleCols(k0, w);
+      if (odd_columns > 0) {
+        o.noalias() = a_odd.topRows(r) * trig_odd.middleCols(k0, w);
+      } else {
+        o.setZero();
+      }
+      for (Eigen::Index j = 0; j < w; ++j) {
+        const Eigen::Index k = k0 + j;
+        out.block(3 * first, k, r, 1) = e.col(j) + o.col(j);
+        if (mirror && nv - 1 - k > k)
+          out.block(3 * first, nv - 1 - k, r, 1) = mirror_sign * (e.col(j) - o.col(j));
+      }
+    }
+  }
   return grid;
 }
 
