@@ -6,7 +6,8 @@
 //! every curve is expanded in cosines (`cosine_coefficients`); each mode n is solved in u exactly
 //! (`modes.hpp`) by one of three schemes; modes beyond the chosen N form the remainder R, solved with the
 //! frequency of mode N+1, so that every curve is still met at every sample. The surface caches its
-//! per-mode coefficients: evaluating it at any resolution is one dense matrix product.
+//! per-mode coefficients: evaluating it at any resolution is a dense matrix product (even and odd modes
+//! apart on grids symmetric in v, which halves it).
 
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
