@@ -6,17 +6,17 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
-#include <map>
-#include <set>
+#include <thread>
 
 namespace pdeface::compare {
 namespace {
 
-TableRow measure_row(const Mesh& canonical, const slice::ProfileSet& profiles, pde::Scheme scheme,
-                     const TableOptions& options, std::string_view source) {
-  TableRow row{.scan = std::string(source), .ratio = profiles.ratio, .k = profiles.k, .scheme = scheme};
+TableRow measure_row(const Mesh& canonical, const slice::ProfileSet& profiles, double ratio,
+                     pde::Scheme scheme, const TableOptions& options, std::string_view source) {
+  TableRow row{.scan = std::string(source), .ratio = ratio, .k = profiles.k, .scheme = scheme};
   pde::Options pde = options.pde;
   pde.scheme = scheme;
   const pde::Curves curves = to_curves(profiles);
@@ -64,7 +64,7 @@ Result<std::vector<TableRow>> table_rows(const Mesh& scan, const align::Alignmen
                                          const TableOptions& options, std::string_view source) {
   const Mesh canonical = align::to_canonical(scan, alignment.frame);
   const align::Landmarks landmarks = align::to_canonical(alignment.landmarks, alignment.frame);
-  std::vector<TableRow> rows;
+  std::vector<slice::ProfileSet> sets; // one per ratio
   for (double ratio : options.ratios) {
     slice::ProfileOptions profile_options = options.profiles;
     profile_options.ratio = ratio;
@@ -76,10 +76,24 @@ Result<std::vector<TableRow>> table_rows(const Mesh& scan, const align::Alignmen
       if (e.source.empty()) e.source = source;
       return e;
     }
-    for (pde::Scheme scheme : options.schemes) {
-      rows.push_back(measure_row(canonical, *profiles, scheme, options, source));
-      rows.back().ratio = ratio; // as asked, not as rounded to whole points
+    sets.push_back(std::move(profiles).value());
+  }
+  // Every row is independent (solving, meshing and measuring are pure): spread them over the cores.
+  std::vector<TableRow> rows(sets.size() * options.schemes.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    for (std::size_t i = next++; i < rows.size(); i = next++) {
+      const std::size_t r = i / options.schemes.size(), s = i % options.schemes.size();
+      rows[i] = measure_row(canonical, sets[r], options.ratios[r], options.schemes[s], options, source);
     }
+  };
+  {
+    const std::size_t threads =
+        std::min<std::size_t>(rows.size(), std::max(1U, std::thread::hardware_concurrency()));
+    std::vector<std::jthread> workers(threads > 1 ? threads - 1 : 0);
+    for (std::jthread& w : workers)
+      w = std::jthread(work);
+    work();
   }
   return rows;
 }
