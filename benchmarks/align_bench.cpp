@@ -7,6 +7,8 @@
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -19,9 +21,7 @@ using namespace pdeface;
 
 const Mesh& real_scan() {
   static const Mesh scan = [] {
-    const char* env = std::getenv("PDEFACE_DATA");
-    const std::filesystem::path dir = env && *env ? env : PDEFACE_DEFAULT_FACES;
-    auto loaded = formats::read_mesh(dir / "facefuns_f18.ply");
+    auto loaded = formats::read_mesh(bench::face("facefuns_f18.ply"));
     if (!loaded) {
       std::fprintf(stderr, "align_bench: %s; the real-scan cases are skipped\n",
                    loaded.error().to_string().c_str());

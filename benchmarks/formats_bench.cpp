@@ -10,6 +10,8 @@
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -31,9 +33,7 @@ struct Corpus {
 const Corpus& corpus() {
   static const Corpus c = [] {
     Corpus out;
-    const char* env = std::getenv("PDEFACE_DATA");
-    const std::filesystem::path dir = env && *env ? env : PDEFACE_DEFAULT_FACES;
-    const auto ply = dir / "facefuns_f18.ply";
+    const auto ply = bench::face("facefuns_f18.ply");
     if (auto bytes = read_file(ply); bytes.ok()) {
       out.bytes[".ply"] = std::move(bytes).value();
       out.mesh = formats::read_mesh(out.bytes[".ply"], "scan.ply").value().mesh;
@@ -81,9 +81,7 @@ void write_format(benchmark::State& state, const char* ext) {
 
 // The scan as MeshLab wrote it (facefuns_example.obj, 3.8 MB: 6-digit text, normals), when present.
 void read_real_obj(benchmark::State& state) {
-  const char* env = std::getenv("PDEFACE_DATA");
-  const std::filesystem::path dir = env && *env ? env : PDEFACE_DEFAULT_FACES;
-  auto bytes = read_file(dir / "facefuns_example.obj");
+  auto bytes = read_file(bench::face("facefuns_example.obj"));
   if (!bytes) return state.SkipWithError(bytes.error().to_string().c_str());
   for (auto _ : state) {
     auto loaded = formats::read_mesh(*bytes, "facefuns_example.obj");

@@ -4,6 +4,8 @@
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/metrics/surface_distance.hpp"
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -15,9 +17,7 @@ namespace {
 using namespace pdeface;
 
 Mesh load(const char* name) {
-  const char* env = std::getenv("PDEFACE_DATA");
-  const std::filesystem::path dir = env && *env ? env : PDEFACE_DEFAULT_FACES;
-  auto loaded = formats::read_mesh(dir / name);
+  auto loaded = formats::read_mesh(bench::face(name));
   return loaded ? loaded->mesh : Mesh{};
 }
 

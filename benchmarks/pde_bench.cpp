@@ -26,6 +26,8 @@
 
 #include "../tests/pde/synthetic_face.hpp"
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #if defined(__GLIBC__)
@@ -103,11 +105,7 @@ private:
 
 // --- Real curves ------------------------------------------------------------------------------------
 
-std::filesystem::path scan_path() {
-  const char* env = std::getenv("PDEFACE_DATA");
-  const std::filesystem::path dir = env && *env ? env : PDEFACE_DEFAULT_FACES;
-  return dir / "facefuns_f18.ply";
-}
+std::filesystem::path scan_path() { return bench::face("facefuns_f18.ply"); }
 
 struct AlignedScan {
   Mesh scan;

@@ -8,6 +8,8 @@
 #include "pdeface/slice/intersect.hpp"
 #include "pdeface/slice/profiles.hpp"
 
+#include "bench_support.hpp"
+
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -18,11 +20,7 @@ namespace {
 
 using namespace pdeface;
 
-std::filesystem::path scan_path() {
-  const char* env = std::getenv("PDEFACE_DATA");
-  const std::filesystem::path dir = env && *env ? env : PDEFACE_DEFAULT_FACES;
-  return dir / "facefuns_f18.ply";
-}
+std::filesystem::path scan_path() { return bench::face("facefuns_f18.ply"); }
 
 // The scan in the canonical frame with its landmarks (detected once; not what is measured).
 struct Aligned {
