@@ -81,6 +81,11 @@ TEST(Reconstruct, TheMeshCoversTheCurvesAtAboutOneMillimetre) {
   const Result<Reconstruction> exact = reconstruct(face(), alignment(), {.resolution = Resolution{7, 9}});
   ASSERT_TRUE(exact);
   EXPECT_EQ(exact->canonical.vertex_count(), 63U);
+  const Result<Reconstruction> huge =
+      reconstruct(face(), alignment(), {.resolution = Resolution{3000, 3000}}, "face.ply");
+  ASSERT_FALSE(huge);
+  EXPECT_EQ(huge.error().code, ErrorCode::InvalidArgument);
+  EXPECT_NE(huge.error().message.find("3000 x 3000 grid"), std::string::npos) << huge.error().message;
 }
 
 // The same face moved, turned and stated in metres: the reconstruction moves with it, vertex by vertex.

@@ -2,6 +2,8 @@
 
 #include "pdeface/align/frame.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -63,6 +65,11 @@ Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& ali
   Resolution grid = options.resolution.value_or(resolution_for(*profiles, options.grid_spacing_mm));
   if (grid.u == 0) grid = resolution_for(*profiles, grid.v);
   grid = {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
+  if (grid.u > kMaxGridVertices / grid.v)
+    return make_error(ErrorCode::InvalidArgument,
+                      fmt::format("a {} x {} grid has more than {} vertices: ask for a coarser resolution",
+                                  grid.u, grid.v, kMaxGridVertices),
+                      std::string(source));
   Mesh mesh = surface->mesh(grid.u, grid.v);
   mesh.name = scan.name.empty() ? std::string("pde surface") : scan.name + " (pde surface)";
   Mesh in_scan = align::to_scan(mesh, alignment.frame);

@@ -24,6 +24,10 @@ struct Resolution {
   std::size_t v = 0;
 };
 
+//! The most vertices a reconstruction grid may have (a 2000 × 2000 grid, ~300 MB of mesh): a mistyped
+//! resolution must not exhaust the machine.
+inline constexpr std::size_t kMaxGridVertices = 4'000'000;
+
 //! A grid with about `spacing_mm` between neighbouring points across (border to border) and along (the
 //! height range) the face, at least 2 × 2.
 [[nodiscard]] Resolution resolution_for(const slice::ProfileSet& profiles, double spacing_mm);
@@ -56,8 +60,8 @@ struct Reconstruction {
 
 //! The method on `scan` (any frame and units) with its `alignment`: the scan moved into the canonical
 //! frame, sliced into curves (`slice::extract_profiles`), the PDE surface solved through them and
-//! triangulated, and the mesh mapped back with the alignment's frame. Errors: those of each stage, with
-//! `source` (the scan's name) set.
+//! triangulated, and the mesh mapped back with the alignment's frame. Errors: those of each stage, and
+//! `InvalidArgument` for a grid of more than `kMaxGridVertices`; `source` (the scan's name) set.
 [[nodiscard]] Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& alignment,
                                                  const ReconstructOptions& options = {},
                                                  std::string_view source = {});
