@@ -368,14 +368,17 @@ int run_reconstruct(const ReconstructRequest& request) {
   Result<compare::Fidelity> fidelity =
       compare::measure_fidelity(canonical_scan, made->profiles, made->canonical);
 
+  // The mesh is encoded before anything is written, so that a failure (e.g. an unknown output format)
+  // leaves no output behind.
   Notes notes;
+  Result<std::string> encoded = formats::encode_mesh(made->scan, request.out, request.write, &notes);
+  print_notes(notes);
+  if (!encoded) return fail(encoded.error());
+  if (Result<void> ok = write_file_atomic(request.out, *encoded); !ok) return fail(ok.error());
   if (!request.profiles.empty())
     if (Result<void> ok = write_file_atomic(request.profiles, slice::write_profiles_json(made->profiles));
         !ok)
       return fail(ok.error());
-  Result<std::size_t> written = formats::write_mesh(made->scan, request.out, request.write, &notes);
-  print_notes(notes);
-  if (!written) return fail(written.error());
 
   const slice::ProfileSet& p = made->profiles;
   const pde::Surface& s = made->surface;
@@ -384,7 +387,7 @@ int run_reconstruct(const ReconstructRequest& request) {
              pde::to_string(s.scheme()), s.modes(), s.has_remainder() ? " + remainder" : "", s.smoothing());
   fmt::print("{}: {} x {} grid, {} vertices, {} triangles, {} bytes, in the scan's frame ({})\n",
              request.out.string(), made->grid.u, made->grid.v, made->scan.vertex_count(),
-             made->scan.triangle_count(), *written, to_string(made->scan.units));
+             made->scan.triangle_count(), encoded->size(), to_string(made->scan.units));
   if (fidelity) {
     const metrics::DistanceStats& d = fidelity->surface.both;
     fmt::print("fidelity (mm, face region): profile error {:.3f} (symmetry {:.3f}, eyes {:.3f}, diagonals "

@@ -314,6 +314,10 @@ TEST_F(Cli, ReconstructFailsCleanlyAndWritesNothing) {
         expect, "face.ply");
     EXPECT_EQ(files(), before) << "no output after " << args[0];
   }
+  // An output format that does not exist is found before anything is written: not even the curves.
+  expect_data_error({"reconstruct", path("face.ply"), "--profiles", path("out.json")},
+                    {"-o", path("out.xyz")}, "cannot tell the output format", "out.xyz");
+  EXPECT_EQ(files(), before);
   for (const std::vector<std::string>& args : {std::vector<std::string>{"--resolution", "1x5"},
                                                {"--resolution", "10x10x10"},
                                                {"--scheme", "bezier"}}) {
