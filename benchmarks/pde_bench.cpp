@@ -149,9 +149,7 @@ std::optional<RealCase> make_real_case(std::int64_t percent, std::string& why) {
   if (!a) return std::nullopt;
   slice::ProfileOptions options;
   options.ratio = static_cast<double>(percent) / 100.0;
-  auto profiles = slice::extract_profiles(align::to_canonical(a->scan, a->alignment.frame),
-                                          align::to_canonical(a->alignment.landmarks, a->alignment.frame),
-                                          a->alignment.frame, options);
+  auto profiles = compare::extract_profiles(compare::canonical_scan(a->scan, a->alignment), options);
   if (!profiles) {
     why = profiles.error().to_string();
     return std::nullopt;

@@ -296,11 +296,8 @@ struct ProfilesRequest {
 int run_profiles(const ProfilesRequest& request) {
   Result<AlignedScan> aligned = read_and_align(request.in, request.curves.landmarks);
   if (!aligned) return fail(aligned.error());
-  const align::Alignment& alignment = aligned->alignment;
-  const Mesh canonical = align::to_canonical(aligned->scan.mesh, alignment.frame);
-  Result<slice::ProfileSet> set =
-      slice::extract_profiles(canonical, align::to_canonical(alignment.landmarks, alignment.frame),
-                              alignment.frame, request.curves.profile_options());
+  const compare::CanonicalScan canonical = compare::canonical_scan(aligned->scan.mesh, aligned->alignment);
+  Result<slice::ProfileSet> set = compare::extract_profiles(canonical, request.curves.profile_options());
   if (!set) {
     Error e = std::move(set).error();
     e.source = request.in.string();
@@ -311,7 +308,7 @@ int run_profiles(const ProfilesRequest& request) {
   const std::string svg =
       request.svg.empty()
           ? std::string()
-          : slice::profiles_svg(canonical, *set,
+          : slice::profiles_svg(canonical.mesh, *set,
                                 {.title = fmt::format("{}: {} curves, K = {} ({:.1f} % of {} raw points), {}",
                                                       request.in.filename().string(), set->curves.size(),
                                                       set->k, 100.0 * set->ratio, set->reference_points,
@@ -361,12 +358,11 @@ int run_reconstruct(const ReconstructRequest& request) {
   if (request.resolution.size() == 1) options.resolution = compare::Resolution{0, request.resolution[0]};
   if (request.resolution.size() == 2)
     options.resolution = compare::Resolution{request.resolution[0], request.resolution[1]};
-  Result<compare::Reconstruction> made =
-      compare::reconstruct(aligned->scan.mesh, aligned->alignment, options, request.in.string());
+  const compare::CanonicalScan canonical = compare::canonical_scan(aligned->scan.mesh, aligned->alignment);
+  Result<compare::Reconstruction> made = compare::reconstruct(canonical, options, request.in.string());
   if (!made) return fail(made.error());
-  const Mesh canonical_scan = align::to_canonical(aligned->scan.mesh, aligned->alignment.frame);
   Result<compare::Fidelity> fidelity =
-      compare::measure_fidelity(canonical_scan, made->profiles, made->canonical);
+      compare::measure_fidelity(canonical.mesh, made->profiles, made->canonical);
 
   // The mesh is encoded before anything is written, so that a failure (e.g. an unknown output format)
   // leaves no output behind.
@@ -394,7 +390,7 @@ int run_reconstruct(const ReconstructRequest& request) {
                "{:.3f} / {:.3f}); surface distance mean {:.3f}, RMS {:.3f}, p95 {:.3f}, max {:.2f}\n",
                fidelity->mean_profile_error, fidelity->profile_error[0], fidelity->profile_error[1],
                fidelity->profile_error[2], fidelity->profile_error[3], d.mean, d.rms, d.p95, d.max);
-    const align::FaceFrame& frame = aligned->alignment.frame;
+    const align::FaceFrame& frame = canonical.frame;
     fmt::print(
         "  = mean {:.3g}, max {:.3g} {} in the scan's units; max {:.2e} of the face region's diagonal\n",
         d.mean / frame.scale, d.max / frame.scale, to_string(made->scan.units),

@@ -24,6 +24,15 @@ double height(const slice::ProfileSet& p) { return p.height_range[1] - p.height_
 
 } // namespace
 
+CanonicalScan canonical_scan(const Mesh& scan, const align::Alignment& alignment) {
+  return {align::to_canonical(scan, alignment.frame),
+          align::to_canonical(alignment.landmarks, alignment.frame), alignment.frame};
+}
+
+Result<slice::ProfileSet> extract_profiles(const CanonicalScan& scan, const slice::ProfileOptions& options) {
+  return slice::extract_profiles(scan.mesh, scan.landmarks, scan.frame, options);
+}
+
 pde::Curves to_curves(const slice::ProfileSet& profiles) {
   pde::Curves curves;
   curves.units = Units::Millimetres;
@@ -54,10 +63,12 @@ Result<pde::Surface> surface_from(const slice::ProfileSet& profiles, const pde::
 
 Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& alignment,
                                    const ReconstructOptions& options, std::string_view source) {
-  const Mesh canonical = align::to_canonical(scan, alignment.frame);
-  Result<slice::ProfileSet> profiles =
-      slice::extract_profiles(canonical, align::to_canonical(alignment.landmarks, alignment.frame),
-                              alignment.frame, options.profiles);
+  return reconstruct(canonical_scan(scan, alignment), options, source);
+}
+
+Result<Reconstruction> reconstruct(const CanonicalScan& scan, const ReconstructOptions& options,
+                                   std::string_view source) {
+  Result<slice::ProfileSet> profiles = extract_profiles(scan, options.profiles);
   if (!profiles) return named(std::move(profiles).error(), source);
   Result<pde::Surface> surface = surface_from(*profiles, options.pde, source);
   if (!surface) return named(std::move(surface).error(), source);
@@ -71,8 +82,8 @@ Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& ali
                                   grid.u, grid.v, kMaxGridVertices),
                       std::string(source));
   Mesh mesh = surface->mesh(grid.u, grid.v);
-  mesh.name = scan.name.empty() ? std::string("pde surface") : scan.name + " (pde surface)";
-  Mesh in_scan = align::to_scan(mesh, alignment.frame);
+  mesh.name = scan.mesh.name.empty() ? std::string("pde surface") : scan.mesh.name + " (pde surface)";
+  Mesh in_scan = align::to_scan(mesh, scan.frame);
   return Reconstruction{std::move(profiles).value(), std::move(surface).value(), grid, std::move(mesh),
                         std::move(in_scan)};
 }

@@ -1,6 +1,5 @@
 #include "pdeface/compare/table.hpp"
 
-#include "pdeface/align/frame.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 
 #include <fmt/format.h>
@@ -62,15 +61,13 @@ double mean_over_scans(std::span<const TableRow> rows, double ratio, pde::Scheme
 
 Result<std::vector<TableRow>> table_rows(const Mesh& scan, const align::Alignment& alignment,
                                          const TableOptions& options, std::string_view source) {
-  const Mesh canonical = align::to_canonical(scan, alignment.frame);
-  const align::Landmarks landmarks = align::to_canonical(alignment.landmarks, alignment.frame);
+  const CanonicalScan canonical = canonical_scan(scan, alignment);
   std::vector<slice::ProfileSet> sets; // one per ratio
   for (double ratio : options.ratios) {
     slice::ProfileOptions profile_options = options.profiles;
     profile_options.ratio = ratio;
     profile_options.points.reset();
-    Result<slice::ProfileSet> profiles =
-        slice::extract_profiles(canonical, landmarks, alignment.frame, profile_options);
+    Result<slice::ProfileSet> profiles = extract_profiles(canonical, profile_options);
     if (!profiles) {
       Error e = std::move(profiles).error();
       if (e.source.empty()) e.source = source;
@@ -84,7 +81,7 @@ Result<std::vector<TableRow>> table_rows(const Mesh& scan, const align::Alignmen
   const auto work = [&] {
     for (std::size_t i = next++; i < rows.size(); i = next++) {
       const std::size_t r = i / options.schemes.size(), s = i % options.schemes.size();
-      rows[i] = measure_row(canonical, sets[r], options.ratios[r], options.schemes[s], options, source);
+      rows[i] = measure_row(canonical.mesh, sets[r], options.ratios[r], options.schemes[s], options, source);
     }
   };
   {

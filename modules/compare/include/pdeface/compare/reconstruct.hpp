@@ -13,6 +13,19 @@
 
 namespace pdeface::compare {
 
+//! A scan moved into the canonical frame (mm) with its landmarks there and the frame back to the scan:
+//! what slicing, reconstructing and measuring work on.
+struct CanonicalScan {
+  Mesh mesh;
+  align::Landmarks landmarks;
+  align::FaceFrame frame;
+};
+[[nodiscard]] CanonicalScan canonical_scan(const Mesh& scan, const align::Alignment& alignment);
+
+//! `slice::extract_profiles` on a canonical scan.
+[[nodiscard]] Result<slice::ProfileSet> extract_profiles(const CanonicalScan& scan,
+                                                         const slice::ProfileOptions& options = {});
+
 //! The profile curves as the PDE's boundary data: curve j is `profiles.curves[j].points` (K × 3, chin to
 //! forehead, so v = 0 at the bottom), in the canonical frame, mm.
 [[nodiscard]] pde::Curves to_curves(const slice::ProfileSet& profiles);
@@ -65,5 +78,8 @@ struct Reconstruction {
 [[nodiscard]] Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& alignment,
                                                  const ReconstructOptions& options = {},
                                                  std::string_view source = {});
+//! The same on a scan already in the canonical frame (`canonical_scan`).
+[[nodiscard]] Result<Reconstruction>
+reconstruct(const CanonicalScan& scan, const ReconstructOptions& options = {}, std::string_view source = {});
 
 } // namespace pdeface::compare
