@@ -105,6 +105,12 @@ Result<double> isotropic(const Curves& curves, std::string_view source) {
   return std::numbers::pi * width / length;
 }
 
+// The smoothing parameter a: as given, else isotropic.
+Result<double> smoothing_parameter(const Curves& curves, const Options& options, std::string_view source) {
+  if (options.smoothing) return *options.smoothing;
+  return isotropic(curves, source);
+}
+
 Result<std::vector<double>> curve_positions(const Curves& curves, Spacing spacing, std::string_view source) {
   const std::size_t count = curves.samples.size();
   std::vector<double> knots(count);
@@ -181,17 +187,11 @@ Result<std::size_t> max_modes(const Curves& curves, const Options& options, std:
   const auto top = static_cast<std::size_t>(curves.samples[0].rows()) - 1;
   if (options.scheme != Scheme::Patch4) return top;
 
-  double a = 0;
-  if (options.smoothing) {
-    a = *options.smoothing;
-  } else {
-    auto isotropic_a = isotropic(curves, source);
-    if (!isotropic_a) return std::move(isotropic_a).error();
-    a = *isotropic_a;
-  }
+  const Result<double> a = smoothing_parameter(curves, options, source);
+  if (!a) return a.error();
   auto knots = curve_positions(curves, options.spacing, source);
   if (!knots) return std::move(knots).error();
-  const double stable = highest_stable_frequency(static_cast<double>(top) + 1, a, options, *knots,
+  const double stable = highest_stable_frequency(static_cast<double>(top) + 1, *a, options, *knots,
                                                  detail::piece_spans(Scheme::Patch4, *knots));
   if (stable >= static_cast<double>(top)) return top; // every mode fits: no remainder needed
   // The remainder takes frequency N+1, so with it one mode fewer fits.
@@ -200,7 +200,7 @@ Result<std::size_t> max_modes(const Curves& curves, const Options& options, std:
     return invalid(
         fmt::format("patch4 amplifies even the lowest modes more than {:g}-fold (a = {:g}): use the "
                     "spline scheme",
-                    options.patch4_max_amplification, a),
+                    options.patch4_max_amplification, *a),
         source);
   return static_cast<std::size_t>(modes);
 }
@@ -217,13 +217,9 @@ Result<Surface> Surface::build(const Curves& curves, const Options& options, std
   s.sample_count_ = samples;
   s.modes_ = options.modes.value_or(samples - 1);
   s.columns_ = options.remainder ? samples : s.modes_ + 1;
-  if (options.smoothing) {
-    s.a_ = *options.smoothing;
-  } else {
-    auto a = isotropic(curves, source);
-    if (!a) return std::move(a).error();
-    s.a_ = *a;
-  }
+  const Result<double> a = smoothing_parameter(curves, options, source);
+  if (!a) return a.error();
+  s.a_ = *a;
   auto knots = curve_positions(curves, options.spacing, source);
   if (!knots) return std::move(knots).error();
   s.knots_ = std::move(knots).value();
