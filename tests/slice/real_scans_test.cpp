@@ -3,6 +3,7 @@
 
 #include "pdeface/align/detect.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/metrics/profile_error.hpp"
 #include "pdeface/slice/profiles.hpp"
 #include "pdeface_test.hpp"
 
@@ -14,27 +15,34 @@ namespace {
 using align::Landmark;
 
 double distance_to(const Vec3& p, const std::vector<Vec3>& line) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
-    const Vec3 d = line[i + 1] - line[i];
-    const double t = std::clamp((p - line[i]).dot(d) / std::max(d.squaredNorm(), 1e-12), 0.0, 1.0);
-    best = std::min(best, (line[i] + t * d - p).norm());
-  }
-  return best;
+  return metrics::distance_to_polylines(p, std::span(&line, 1));
+}
+
+// A real scan moved into the canonical frame by detected landmarks.
+struct Canonical {
+  Mesh mesh;
+  align::Landmarks landmarks;
+  align::FaceFrame frame;
+};
+
+Result<Canonical> read_canonical(const std::filesystem::path& path) {
+  Result<formats::LoadedMesh> scan = formats::read_mesh(path);
+  if (!scan) return scan.error();
+  Result<align::Detection> found = align::detect_landmarks(scan->mesh);
+  if (!found) return found.error();
+  return Canonical{align::to_canonical(scan->mesh, found->frame),
+                   align::to_canonical(found->landmarks, found->frame), found->frame};
 }
 
 class RealScan : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(RealScan, Gives28ProfilesAndTheEvaluationProfiles) {
   PDEFACE_FACE_OR_SKIP(path, GetParam());
-  Result<formats::LoadedMesh> scan = formats::read_mesh(path);
+  const Result<Canonical> scan = read_canonical(path);
   ASSERT_TRUE(scan) << scan.error().to_string();
-  Result<align::Detection> found = align::detect_landmarks(scan->mesh);
-  ASSERT_TRUE(found) << found.error().to_string();
-  const Mesh canonical = align::to_canonical(scan->mesh, found->frame);
-  const align::Landmarks landmarks = align::to_canonical(found->landmarks, found->frame);
+  const align::Landmarks& landmarks = scan->landmarks;
 
-  Result<ProfileSet> set = extract_profiles(canonical, landmarks, found->frame);
+  Result<ProfileSet> set = extract_profiles(scan->mesh, landmarks, scan->frame);
   ASSERT_TRUE(set) << set.error().to_string();
   ASSERT_EQ(set->curves.size(), 28U);
   ASSERT_EQ(set->evaluation.size(), 4U);
@@ -81,15 +89,12 @@ TEST(RealScanFit, ArcLengthFitsBetterThanHeight) {
   // docs/slice.md's comparison on facefuns_f18 at 10 % (K = 27): the raw points' mean distance to the
   // fitted spline (0.15 vs 0.22 mm) and the K points' largest distance to the raw profile (1.1 vs 2.6 mm).
   PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
-  Result<formats::LoadedMesh> scan = formats::read_mesh(path);
+  const Result<Canonical> scan = read_canonical(path);
   ASSERT_TRUE(scan) << scan.error().to_string();
-  Result<align::Detection> found = align::detect_landmarks(scan->mesh);
-  ASSERT_TRUE(found) << found.error().to_string();
-  const Mesh canonical = align::to_canonical(scan->mesh, found->frame);
-  const align::Landmarks landmarks = align::to_canonical(found->landmarks, found->frame);
+  const align::Landmarks& landmarks = scan->landmarks;
   std::array<double, 2> raw_mean{}, k_max{};
   for (Parameter parameter : {Parameter::ArcLength, Parameter::Height}) {
-    Result<ProfileSet> set = extract_profiles(canonical, landmarks, found->frame, {.parameter = parameter});
+    Result<ProfileSet> set = extract_profiles(scan->mesh, landmarks, scan->frame, {.parameter = parameter});
     ASSERT_TRUE(set) << set.error().to_string();
     const auto i = static_cast<std::size_t>(parameter == Parameter::Height);
     std::size_t n = 0;
