@@ -3,11 +3,10 @@
 #include "pdeface/metrics/profile_error.hpp"
 #include "pdeface/slice/profile.hpp"
 
-#include <algorithm>
-#include <iterator>
-
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <iterator>
 #include <limits>
 
 namespace pdeface::compare {
