@@ -5,6 +5,7 @@
 #include "pdeface/align/frame.hpp"
 #include "pdeface/align/preview.hpp"
 #include "pdeface/compare/fidelity.hpp"
+#include "pdeface/compare/preview.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/compare/table.hpp"
 #include "pdeface/core/file.hpp"
@@ -255,7 +256,8 @@ int run_align(const AlignRequest& request) {
 struct CurveArgs {
   fs::path landmarks; // given landmarks instead of detection
   std::string parameter = "arc";
-  std::string sampling = "parameter";
+  std::string sampling = "local";
+  std::string fit = "cosine";
   std::optional<std::size_t> points;
   slice::ProfileOptions options;
 
@@ -263,7 +265,10 @@ struct CurveArgs {
     slice::ProfileOptions o = options;
     o.points = points;
     o.parameter = parameter == "height" ? slice::Parameter::Height : slice::Parameter::ArcLength;
-    o.sampling = sampling == "parameter" ? slice::Sampling::Parameter : slice::Sampling::SharedHeights;
+    o.fit = fit == "spline" ? slice::Fit::Spline : slice::Fit::Cosine;
+    o.sampling = sampling == "parameter" ? slice::Sampling::Parameter
+                 : sampling == "local"   ? slice::Sampling::LocalHeights
+                                         : slice::Sampling::SharedHeights;
     return o;
   }
 };
@@ -285,6 +290,16 @@ Result<AlignedScan> read_and_align(const fs::path& in, const fs::path& landmarks
 }
 
 // ---- profiles -----------------------------------------------------------------------------------------
+
+// What slicing filled and what the scan lacks, as notes.
+void print_holes_and_gaps(const slice::ProfileSet& set) {
+  if (set.holes() > 0)
+    fmt::print(stderr,
+               "pdeface: note: {} holes filled ({:.1f} % of the curves' length, the longest {:.1f} mm)\n",
+               set.holes(), 100.0 * set.filled_fraction, set.longest_hole_mm());
+  for (const std::string& m : set.missing)
+    fmt::print(stderr, "pdeface: note: missing from the scan: {}\n", m);
+}
 
 struct ProfilesRequest {
   fs::path in;
@@ -308,19 +323,21 @@ int run_profiles(const ProfilesRequest& request) {
   const std::string svg =
       request.svg.empty()
           ? std::string()
-          : slice::profiles_svg(canonical.mesh, *set,
-                                {.title = fmt::format("{}: {} curves, K = {} ({:.1f} % of {} raw points), {}",
-                                                      request.in.filename().string(), set->curves.size(),
-                                                      set->k, 100.0 * set->ratio, set->reference_points,
-                                                      slice::to_string(set->parameter))});
+          : slice::profiles_svg(
+                canonical.mesh, *set,
+                {.title = fmt::format("{}: {} curves, K = {} ({:.1f} % of {} reference points), {}",
+                                      request.in.filename().string(), set->curves.size(), set->k,
+                                      100.0 * set->ratio, set->reference_points,
+                                      slice::to_string(set->parameter))});
   if (Result<void> ok = write_file_atomic(request.out, json); !ok) return fail(ok.error());
   if (!request.svg.empty())
     if (Result<void> ok = write_file_atomic(request.svg, svg); !ok) return fail(ok.error());
   fmt::print("{}: {} curves at x = {:.1f} .. {:.1f} mm, y = {:.1f} .. {:.1f} mm, K = {} points ({:.1f} % of "
-             "{} raw), 4 evaluation profiles -> {}\n",
+             "{}; the scan's profiles have {} raw points), 4 evaluation profiles -> {}\n",
              request.in.string(), set->curves.size(), set->curves.front().x, set->curves.back().x,
              set->height_range[0], set->height_range[1], set->k, 100.0 * set->ratio, set->reference_points,
-             request.out.string());
+             set->raw_points, request.out.string());
+  print_holes_and_gaps(*set);
   return 0;
 }
 
@@ -344,6 +361,7 @@ struct ReconstructRequest {
   fs::path in;
   fs::path out;
   fs::path profiles; // the curves as JSON too
+  fs::path preview;  // SVG: scan and reconstruction side by side
   CurveArgs curves;
   SurfaceArgs surface;
   std::vector<std::size_t> resolution; // {v} or {u, v}
@@ -375,10 +393,19 @@ int run_reconstruct(const ReconstructRequest& request) {
     if (Result<void> ok = write_file_atomic(request.profiles, slice::write_profiles_json(made->profiles));
         !ok)
       return fail(ok.error());
+  if (!request.preview.empty())
+    if (Result<void> ok = write_file_atomic(
+            request.preview,
+            compare::reconstruction_preview_svg(
+                canonical.mesh, made->canonical, made->profiles,
+                {.title = fmt::format("{}: {} curves x {} points", request.in.filename().string(),
+                                      made->profiles.curves.size(), made->profiles.k)}));
+        !ok)
+      return fail(ok.error());
 
   const slice::ProfileSet& p = made->profiles;
   const pde::Surface& s = made->surface;
-  fmt::print("{}: {} curves x {} points ({:.1f} % of {} raw), {} scheme, N = {} modes{}, a = {:.3f}\n",
+  fmt::print("{}: {} curves x {} points ({:.1f} % of {}), {} scheme, N = {} modes{}, a = {:.3f}\n",
              request.in.string(), p.curves.size(), p.k, 100.0 * p.ratio, p.reference_points,
              pde::to_string(s.scheme()), s.modes(), s.has_remainder() ? " + remainder" : "", s.smoothing());
   fmt::print("{}: {} x {} grid, {} vertices, {} triangles, {} bytes, in the scan's frame ({})\n",
@@ -395,9 +422,16 @@ int run_reconstruct(const ReconstructRequest& request) {
         "  = mean {:.3g}, max {:.3g} {} in the scan's units; max {:.2e} of the face region's diagonal\n",
         d.mean / frame.scale, d.max / frame.scale, to_string(made->scan.units),
         d.max / fidelity->surface.diagonal);
+    const compare::Coverage& c = fidelity->coverage;
+    fmt::print(
+        "coverage of the face (the outline its landmarks give): {:.1f} % of the scan within 1 mm of the "
+        "reconstruction; scan -> reconstruction mean {:.3f}, p95 {:.3f} mm; reconstruction -> scan mean "
+        "{:.3f} mm\n",
+        100.0 * c.share, c.distance.mean, c.distance.p95, fidelity->surface.b_to_a.mean);
   } else {
     fmt::print(stderr, "pdeface: note: fidelity not measured: {}\n", fidelity.error().message);
   }
+  print_holes_and_gaps(p);
   return 0;
 }
 
@@ -484,14 +518,20 @@ void add_curve_options(CLI::App* cmd, CurveArgs& curves, bool with_landmarks = t
   cmd->add_option("--parameter", curves.parameter, "Spline parameter: arc (length) or height")
       ->check(CLI::IsMember({"arc", "height"}))
       ->capture_default_str();
-  cmd->add_option("--sampling", curves.sampling,
-                  "Where the K points go: parameter (evenly in each curve's spline parameter) or shared (the "
-                  "same heights on every curve; better from 20 % up)")
-      ->check(CLI::IsMember({"shared", "parameter"}))
+  cmd->add_option(
+         "--sampling", curves.sampling,
+         "Where the K points go: local (at the heights the curves near each one share), parameter "
+         "(evenly in each curve's own arc length) or shared (the same relative heights on every curve)")
+      ->check(CLI::IsMember({"shared", "parameter", "local"}))
       ->capture_default_str();
-  cmd->add_option("--max-gap", curves.options.section.max_gap_mm, "Longest hole bridged, mm")
-      ->check(CLI::Range(0.0, 100.0))
+  cmd->add_option("--fit", curves.fit,
+                  "How the K points are made: cosine (the least-squares fit the PDE surface can draw) or "
+                  "spline (a least-squares cubic spline, sampled)")
+      ->check(CLI::IsMember({"cosine", "spline"}))
       ->capture_default_str();
+  cmd->add_option("--max-gap", curves.options.max_hole_mm,
+                  "Longest hole filled along a curve, mm (default: a quarter of the face's height)")
+      ->check(CLI::Range(0.0, 200.0));
 }
 
 void add_surface_options(CLI::App* cmd, SurfaceArgs& surface, bool with_scheme = true) {
@@ -594,6 +634,8 @@ int main(int argc, char** argv) {
       ->add_option("-o,--output", reconstruct.out, "Surface mesh to write (.glb .obj .ply .wrl ...)")
       ->required();
   reconstruct_cmd->add_option("--profiles", reconstruct.profiles, "Also write the curves as JSON");
+  reconstruct_cmd->add_option("--preview", reconstruct.preview,
+                              "Also write an SVG: the scan and the reconstruction side by side, and turned");
   reconstruct_cmd
       ->add_option("--resolution", reconstruct.resolution,
                    "Grid: V points along the face's height (across in proportion), or UxV; default about "

@@ -248,9 +248,16 @@ TEST_F(Cli, ProfilesWritesTheCurvesAndThePicture) {
 
 TEST_F(Cli, ProfilesFailsCleanlyAndWritesNothing) {
   ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  // Landmarks that put the face beside the scan: bad data, however well formed the file is.
+  std::ofstream(io_ / "beside.json")
+      << R"({"format": "pdeface-landmarks", "version": 1, "units": "mm", "landmarks": {
+  "nose_tip": [500, 0, 0], "eye_inner_left": [517, 29, -20], "eye_inner_right": [483, 29, -20],
+  "eye_outer_left": [546, 30, -30], "eye_outer_right": [454, 30, -30], "mouth_left": [523, -30, -15],
+  "mouth_right": [477, -30, -15], "face_top": [500, 70, -15], "face_bottom": [500, -80, -20]}})";
   const std::size_t before = files();
   for (const auto& [args, expect] : std::vector<std::pair<std::vector<std::string>, std::string>>{
-           {{"--curves", "27"}, "3 · patches + 1"}, {{"--max-gap", "0.01"}, "plane "}}) {
+           {{"--curves", "27"}, "3 · patches + 1"},
+           {{"--landmarks", (io_ / "beside.json").string()}, "most of the face is missing"}}) {
     expect_data_error({"profiles", path("face.ply"), "-o", path("out.json"), "--svg", path("out.svg")}, args,
                       expect, "face.ply");
     EXPECT_EQ(files(), before) << "no output after " << args[0];
@@ -280,8 +287,9 @@ TEST_F(Cli, ReconstructWritesTheSurfaceInTheScansUnits) {
   Outcome r = run({"reconstruct", path("face.glb"), "-o", path("surface.ply"), "--profiles",
                    path("curves.json"), "--resolution", "60x80"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(lines(r.out), 4U) << r.out;
+  EXPECT_EQ(lines(r.out), 5U) << r.out;
   EXPECT_NE(r.out.find(" m in the scan's units"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("coverage of the face"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("28 curves"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("spline scheme"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("60 x 80 grid, 4800 vertices"), std::string::npos) << r.out;

@@ -54,7 +54,7 @@ TEST(Reconstruct, TheSurfaceGoesThroughEveryCurve) {
 TEST(Reconstruct, TheMeshCoversTheCurvesAtAboutOneMillimetre) {
   const Reconstruction& r = spline();
   const slice::ProfileSet& p = r.profiles;
-  EXPECT_NEAR((2 * p.border_mm) / static_cast<double>(r.grid.u - 1), 1.0, 0.05);
+  EXPECT_NEAR((p.border[0] + p.border[1]) / static_cast<double>(r.grid.u - 1), 1.0, 0.05);
   EXPECT_NEAR((p.height_range[1] - p.height_range[0]) / static_cast<double>(r.grid.v - 1), 1.0, 0.05);
   ASSERT_EQ(r.canonical.vertex_count(), r.grid.u * r.grid.v);
   EXPECT_EQ(r.canonical.triangle_count(), 2 * (r.grid.u - 1) * (r.grid.v - 1));
@@ -63,8 +63,8 @@ TEST(Reconstruct, TheMeshCoversTheCurvesAtAboutOneMillimetre) {
   Box box;
   for (const Vec3& q : r.canonical.positions)
     box.extend(q);
-  EXPECT_NEAR(box.min.x(), -p.border_mm, 1e-9);
-  EXPECT_NEAR(box.max.x(), p.border_mm, 1e-9);
+  EXPECT_NEAR(box.min.x(), -p.border[0], 1e-9);
+  EXPECT_NEAR(box.max.x(), p.border[1], 1e-9);
   EXPECT_NEAR(box.min.y(), p.height_range[0], 1.0);
   EXPECT_NEAR(box.max.y(), p.height_range[1], 1.0);
   // Normals face the viewer (+z) on the whole face.
@@ -77,7 +77,7 @@ TEST(Reconstruct, TheMeshCoversTheCurvesAtAboutOneMillimetre) {
   ASSERT_TRUE(coarse) << coarse.error().message;
   EXPECT_EQ(coarse->grid.v, 21U);
   EXPECT_NEAR(static_cast<double>(coarse->grid.u - 1) / 20.0,
-              2 * p.border_mm / (p.height_range[1] - p.height_range[0]), 0.1);
+              (p.border[0] + p.border[1]) / (p.height_range[1] - p.height_range[0]), 0.1);
   const Result<Reconstruction> exact = reconstruct(face(), alignment(), {.resolution = Resolution{7, 9}});
   ASSERT_TRUE(exact);
   EXPECT_EQ(exact->canonical.vertex_count(), 63U);
@@ -172,16 +172,20 @@ TEST(Fidelity, AShortReconstructionIsMeasuredWhereItExists) {
       << none.error().message;
 }
 
-TEST(Fidelity, TheFaceRegionIsTheCurvesBox) {
+TEST(Fidelity, TheFaceRegionIsTheCurvesRegion) {
   const slice::ProfileSet& p = spline().profiles;
-  const Box region = face_region(p, 10.0);
+  const FaceRegion region = face_region(p, 10.0);
   for (const slice::ProfileCurve& c : p.curves)
     for (const Vec3& q : c.raw)
-      EXPECT_TRUE((q.array() >= region.min.array()).all() && (q.array() <= region.max.array()).all());
-  EXPECT_EQ(region.min.x(), -p.border_mm);
-  EXPECT_EQ(region.max.y(), p.height_range[1]);
-  EXPECT_LT(region.min.z(), -10.0);
-  EXPECT_GT(region.min.z(), -150.0); // the back of a head is not in it
+      EXPECT_TRUE(region.contains(q)) << c.feature << " " << q.transpose();
+  // Each curve's extent bounds it, linearly in between; beyond the border curves nothing.
+  const slice::ProfileCurve& border = p.curves.front();
+  EXPECT_FALSE(region.contains(Vec3(border.x, border.extent[0] - 1.0, 0.0)));
+  EXPECT_FALSE(region.contains(Vec3(border.x - 1.0, 0.5 * (border.extent[0] + border.extent[1]), 0.0)));
+  EXPECT_TRUE(region.contains(Vec3(0.0, 0.0, 0.0)));
+  EXPECT_LT(region.min_z, -10.0);
+  EXPECT_GT(region.min_z, -150.0); // the back of a head is not in it
+  EXPECT_FALSE(region.contains(Vec3(0.0, 0.0, -200.0)));
 }
 
 // On the sample face too, the default scheme is the most faithful.

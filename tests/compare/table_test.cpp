@@ -55,7 +55,9 @@ TEST(Table, MarkdownHasTheSummariesAndEveryRow) {
   const std::string md = table_markdown(rows());
   for (const char* heading :
        {"## Profile error (mm)", "## Profile error on the curves' own planes (mm)",
-        "## Surface distance, mean (mm)", "## Surface distance, 95th percentile (mm)", "## Every scan"})
+        "## Surface distance, mean (mm)", "## Surface distance, 95th percentile (mm)",
+        "## Face coverage: share of the scan's face mask within 1 mm of the reconstruction (%)",
+        "## Face mask: scan to reconstruction, mean (mm)", "## Every scan"})
     EXPECT_NE(md.find(heading), std::string::npos) << heading;
   EXPECT_NE(md.find("| ratio | K | spline | paper | patch4 |"), std::string::npos) << md;
   EXPECT_NE(md.find("| 10 % |"), std::string::npos) << md;
@@ -80,12 +82,13 @@ TEST(Table, CsvHasAHeaderAndOneLinePerRow) {
   const auto lines = split(table_csv(rows()), '\n');
   ASSERT_EQ(lines.size(), 10U);
   const std::size_t columns = split(lines[0], ',').size();
-  EXPECT_EQ(columns, 18U);
+  EXPECT_EQ(columns, 20U);
   for (std::size_t i = 1; i < lines.size(); ++i) {
     const auto cells = split(lines[i] + ",", ','); // a trailing empty cell is still a cell
     EXPECT_EQ(cells.size(), columns) << lines[i];
     EXPECT_EQ(cells[0], "\"sample.ply\"");
     EXPECT_NEAR(std::stod(cells[10]), rows()[i - 1].fidelity->mean_profile_error, 1e-5);
+    EXPECT_NEAR(std::stod(cells[17]), rows()[i - 1].fidelity->coverage.share, 1e-5);
   }
 }
 
@@ -103,7 +106,7 @@ TEST(Table, AFailedSchemeIsARowThatSaysWhy) {
   EXPECT_NE(md.find("failed: patch4"), std::string::npos) << md;
   const auto csv = split(table_csv(*r), '\n');
   ASSERT_EQ(csv.size(), 2U);
-  EXPECT_NE(csv[1].find(",,,,,,,,,,,,,\"patch4"), std::string::npos) << csv[1];
+  EXPECT_NE(csv[1].find(",,,,,,,,,,,,,,,\"patch4"), std::string::npos) << csv[1];
 
   options.ratios = {0.9};
   const Result<std::vector<TableRow>> bad = table_rows(face, a, options, "sample.ply");

@@ -30,6 +30,17 @@ constexpr Expected kScans[] = {
     {"fran_cut.wrl", formats::Format::Vrml, 2205, 4224},
     {"stfaces_neutral.wrl", formats::Format::Vrml, 7118, 14037},
     {"james.obj", formats::Format::Obj, 6393, 12228},
+    {"meshmonk_demoface.obj", formats::Format::Obj, 25524, 50660},
+    {"demosthenes.obj", formats::Format::Obj, 8394, 16719},
+    {"bust_man_wreath.obj", formats::Format::Obj, 15757, 31514},
+    {"ict_00.obj", formats::Format::Obj, 8969, 17569},
+    {"ict_01.ply", formats::Format::Ply, 8421, 16434},
+    {"ict_02.glb", formats::Format::Glb, 9409, 18460},
+    {"ict_03.wrl", formats::Format::Vrml, 7836, 15169},
+    {"ict_04.obj", formats::Format::Obj, 9409, 18460},
+    {"ict_05.ply", formats::Format::Ply, 9409, 18460},
+    {"ict_06.glb", formats::Format::Glb, 8652, 16891},
+    {"ict_07.wrl", formats::Format::Vrml, 9002, 17602},
 };
 
 class SharedFace : public ::testing::TestWithParam<Expected> {};

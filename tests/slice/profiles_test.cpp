@@ -45,7 +45,6 @@ TEST(Profiles, SampleFaceGivesTheLayout) {
   Result<ProfileSet> set = extract(face());
   ASSERT_TRUE(set) << set.error().message;
   ASSERT_EQ(set->curves.size(), 28U);
-  const auto [lo, hi] = set->height_range;
   for (std::size_t j = 0; j < 28; ++j) {
     const ProfileCurve& c = set->curves[j];
     EXPECT_EQ(c.index, j);
@@ -54,57 +53,84 @@ TEST(Profiles, SampleFaceGivesTheLayout) {
     if (j > 0) {
       EXPECT_GT(c.x, set->curves[j - 1].x);
     }
-    // Every curve spans exactly the same heights, on its plane.
-    EXPECT_EQ(c.raw.front().y(), lo);
-    EXPECT_EQ(c.raw.back().y(), hi);
+    // Each curve spans its own extent, on its plane, ending exactly at it.
+    EXPECT_EQ(c.raw.front().y(), c.extent[0]);
+    EXPECT_EQ(c.raw.back().y(), c.extent[1]);
     for (const Vec3& p : c.raw)
       EXPECT_EQ(p.x(), c.x);
     ASSERT_EQ(c.points.size(), set->k);
-    EXPECT_NEAR(c.points.front().y(), lo, 0.5);
-    EXPECT_NEAR(c.points.back().y(), hi, 0.5);
+    ASSERT_EQ(c.filled.size(), set->k);
+    EXPECT_NEAR(c.points.front().y(), c.extent[0], 1e-9);
+    EXPECT_NEAR(c.points.back().y(), c.extent[1], 1e-9);
+    EXPECT_GE(c.extent[0], set->height_range[0]);
+    EXPECT_LE(c.extent[1], set->height_range[1]);
+    EXPECT_TRUE(c.holes.empty()) << j;
   }
-  // Joints at the features: outer corners ±46, inner ±17, eye centres midway, nose wings at 0.65 · 17.
+  // Joints at the features: outer corners ±46, inner ±17, eye centres midway, nose sides at 0.4 · 17.
   EXPECT_EQ(set->curves[3].feature, "outer eye corner (right)");
   EXPECT_DOUBLE_EQ(set->curves[3].x, -46.0);
   EXPECT_DOUBLE_EQ(set->curves[6].x, -31.5);
   EXPECT_DOUBLE_EQ(set->curves[9].x, -17.0);
-  EXPECT_DOUBLE_EQ(set->curves[12].x, -0.65 * 17.0);
+  EXPECT_DOUBLE_EQ(set->curves[12].x, -0.4 * 17.0);
+  EXPECT_EQ(set->curves[12].feature, "nose side (right)");
   EXPECT_EQ(set->curves[27].feature, "face border (left)");
-  EXPECT_GT(set->border_mm, 46.0);
+  // The border lies beyond the face mask, which lies beyond the outer eye corners.
+  EXPECT_GT(set->mask.half_width, 1.1 * 46.0);
+  EXPECT_NEAR(set->border_mm, 1.06 * set->mask.half_width, 1e-9);
   EXPECT_DOUBLE_EQ(set->curves[13].x, set->curves[12].x * 2.0 / 3.0 + set->curves[15].x / 3.0);
-  // The height range reaches from below the mouth to above the eyes.
-  EXPECT_LT(lo, -35.5);
-  EXPECT_GT(hi, 35.0);
-  EXPECT_EQ(set->k, static_cast<std::size_t>(std::lround(0.1 * static_cast<double>(set->reference_points))));
+  // The middle curves reach from the chin to the forehead (the landmarks at -80 and 70), the border curves
+  // less far: the extents follow the face's oval.
+  EXPECT_LT(set->curves[13].extent[0], -80.0);
+  EXPECT_GT(set->curves[13].extent[1], 70.0);
+  EXPECT_GT(set->curves[0].extent[0], set->curves[13].extent[0] + 30.0);
+  EXPECT_LT(set->curves[0].extent[1], set->curves[13].extent[1] - 30.0);
+  EXPECT_GT(set->curves[0].extent[1] - set->curves[0].extent[0], 40.0);
+  // K is the ratio of the paper's 300 reference points, whatever the scan's density.
+  EXPECT_EQ(set->reference_points, 300U);
+  EXPECT_EQ(set->k, 30U);
+  EXPECT_GT(set->raw_points, 100U);
   EXPECT_GT(set->central_width_mm, 92.0); // longer along the surface than the 92 mm straight across
+  EXPECT_DOUBLE_EQ(set->mask_coverage, 1.0);
+  EXPECT_TRUE(set->missing.empty());
 }
 
-// Shared heights: point k of every curve at one height, from the bottom of the range to its top.
-TEST(Profiles, SharedHeightsPutPointKOfEveryCurveAtOneHeight) {
+// Shared heights: point k of every curve at one relative height; local heights: neighbouring curves nearly
+// so; parameter sampling: each curve its own.
+TEST(Profiles, SamplingsLineUpPointKAsAsked) {
   Result<ProfileSet> set = extract(face(), {.ratio = 0.2, .sampling = Sampling::SharedHeights});
   ASSERT_TRUE(set) << set.error().message;
   EXPECT_EQ(set->sampling, Sampling::SharedHeights);
   ASSERT_EQ(set->heights.size(), set->k);
-  EXPECT_EQ(set->heights.front(), set->height_range[0]);
-  EXPECT_EQ(set->heights.back(), set->height_range[1]);
+  EXPECT_EQ(set->heights.front(), 0.0);
+  EXPECT_EQ(set->heights.back(), 1.0);
   for (std::size_t i = 1; i < set->k; ++i)
     EXPECT_GT(set->heights[i], set->heights[i - 1]) << i;
+  auto relative = [](const ProfileCurve& c, std::size_t i) {
+    return (c.points[i].y() - c.extent[0]) / (c.extent[1] - c.extent[0]);
+  };
   for (const ProfileCurve& c : set->curves) {
     ASSERT_EQ(c.points.size(), set->k);
     for (std::size_t i = 0; i < set->k; ++i)
-      EXPECT_NEAR(c.points[i].y(), set->heights[i], 1e-3) << c.index << " " << i; // within the tabulation
+      EXPECT_NEAR(relative(c, i), set->heights[i], 0.02) << c.index << " " << i; // the samples follow the fit
     EXPECT_EQ(c.points.front(), c.raw.front());
     EXPECT_EQ(c.points.back(), c.raw.back());
   }
-  // Parameter sampling (the default) does not line them up.
-  Result<ProfileSet> own = extract(face(), {.ratio = 0.2});
+  // How far apart point k of neighbouring curves lies, in relative height, at most.
+  auto neighbour_spread = [&](const ProfileSet& p) {
+    double spread = 0.0;
+    for (std::size_t j = 1; j < p.curves.size(); ++j)
+      for (std::size_t i = 0; i < p.k; ++i)
+        spread = std::max(spread, std::abs(relative(p.curves[j], i) - relative(p.curves[j - 1], i)));
+    return spread;
+  };
+  Result<ProfileSet> local = extract(face(), {.ratio = 0.2, .sampling = Sampling::LocalHeights});
+  Result<ProfileSet> own = extract(face(), {.ratio = 0.2, .sampling = Sampling::Parameter});
+  ASSERT_TRUE(local);
   ASSERT_TRUE(own);
   EXPECT_EQ(own->sampling, Sampling::Parameter);
   EXPECT_TRUE(own->heights.empty());
-  double spread = 0.0;
-  for (const ProfileCurve& c : own->curves)
-    spread = std::max(spread, std::abs(c.points[own->k / 2].y() - own->curves[14].points[own->k / 2].y()));
-  EXPECT_GT(spread, 1.0);
+  EXPECT_LT(neighbour_spread(*set), 0.03);
+  EXPECT_LT(neighbour_spread(*local), neighbour_spread(*own));
 }
 
 TEST(Profiles, EvaluationProfilesLieInTheirPlanes) {
@@ -112,17 +138,23 @@ TEST(Profiles, EvaluationProfilesLieInTheirPlanes) {
   ASSERT_TRUE(set);
   ASSERT_EQ(set->evaluation.size(), 4U);
   const std::array<std::string, 4> names{"symmetry", "eyes", "diagonal_up", "diagonal_down"};
+  const CurveRegion region = set->region();
   for (std::size_t i = 0; i < 4; ++i) {
     const EvaluationProfile& e = set->evaluation[i];
     EXPECT_EQ(e.name, names[i]);
     ASSERT_GT(e.points.size(), 50U);
-    for (const Vec3& p : e.points)
+    EXPECT_TRUE(e.gaps.empty());
+    for (const Vec3& p : e.points) {
       EXPECT_NEAR(e.plane.normal.dot(p), e.plane.offset, 1e-9);
+      EXPECT_TRUE(region.contains(p.x(), p.y())) << e.name << " " << p.transpose();
+    }
     for (std::size_t k = 1; k < e.points.size(); ++k)
       EXPECT_LT(e.along.dot(e.points[k - 1]), e.along.dot(e.points[k]));
   }
-  EXPECT_EQ(set->evaluation[0].points.front().y(), set->height_range[0]);
-  EXPECT_EQ(set->evaluation[1].points.front().x(), -set->border_mm);
+  // The symmetry profile spans the region at x = 0, the eye line the border curves.
+  EXPECT_NEAR(set->evaluation[0].points.front().y(), (*region.heights_at(0.0))[0], 1e-6);
+  EXPECT_NEAR(set->evaluation[1].points.front().x(), -set->border[0], 0.1);
+  EXPECT_NEAR(set->evaluation[1].points.back().x(), set->border[1], 0.1);
   EXPECT_DOUBLE_EQ(set->evaluation[1].plane.offset, 29.5); // the four eye corners' mean height
   // The symmetry profile's front-most point is the nose tip.
   const auto& symmetry = set->evaluation[0].points;
@@ -141,7 +173,8 @@ TEST(Profiles, RatioAndPointsAreChecked) {
   for (double ratio : {0.05, 0.60}) {
     Result<ProfileSet> set = extract(face(), {.ratio = ratio});
     ASSERT_TRUE(set) << set.error().message;
-    EXPECT_NEAR(set->ratio, ratio, 0.01);
+    EXPECT_NEAR(set->ratio, ratio, 0.002);
+    EXPECT_EQ(set->k, static_cast<std::size_t>(std::lround(300 * ratio)));
   }
   Result<ProfileSet> three = extract(face(), {.points = 3});
   ASSERT_FALSE(three);
@@ -167,30 +200,91 @@ TEST(Profiles, CurveCountsAreThreePatchesPlusOne) {
     Result<ProfileSet> set = extract(face(), o);
     ASSERT_TRUE(set) << n << ": " << set.error().message;
     ASSERT_EQ(set->curves.size(), n);
-    EXPECT_NEAR(set->curves.back().x, set->border_mm, 1e-12);
-    EXPECT_NEAR(set->curves.front().x, -set->border_mm, 1e-12);
+    EXPECT_NEAR(set->curves.back().x, set->border[1], 1e-12);
+    EXPECT_NEAR(set->curves.front().x, -set->border[0], 1e-12);
   }
 }
 
-TEST(Profiles, AHoleAcrossAPlaneNamesIt) {
-  // A 30 mm hole on the forehead across the right inner eye corner's plane (x = -17).
-  Mesh holed = face();
-  std::erase_if(holed.triangles, [&](const Triangle& t) {
-    const Vec3 c = (holed.positions[t[0]] + holed.positions[t[1]] + holed.positions[t[2]]) / 3.0;
-    return std::hypot(c.x() + 17.0, c.y() - 50.0) < 15.0;
+// Removes the triangles of a mesh whose centroid `cut` selects.
+Mesh without(const Mesh& mesh, const auto& cut) {
+  Mesh out = mesh;
+  std::erase_if(out.triangles, [&](const Triangle& t) {
+    return cut((out.positions[t[0]] + out.positions[t[1]] + out.positions[t[2]]) / 3.0);
+  });
+  return out;
+}
+
+TEST(Profiles, HolesAreFilledFromTheCurveAndItsNeighbours) {
+  // A 30 mm hole on the forehead across the right inner eye corner's plane (x = -17), and an open mouth.
+  const Mesh holed = without(face(), [](const Vec3& c) {
+    return std::hypot(c.x() + 17.0, c.y() - 50.0) < 15.0 ||
+           (std::abs(c.x()) < 18.0 && std::abs(c.y() + 30.5) < 4.0);
   });
   Result<ProfileSet> set = extract(holed);
-  ASSERT_FALSE(set);
-  EXPECT_EQ(set.error().code, ErrorCode::NoFace);
-  EXPECT_TRUE(set.error().message.starts_with("plane ")) << set.error().message;
-  EXPECT_NE(set.error().message.find("mm long at y = 5"), std::string::npos) << set.error().message;
-  EXPECT_NE(set.error().message.find("the scan has no surface between y = -80.0 and y = 70.0 mm"),
-            std::string::npos)
-      << set.error().message;
-  // Bridging that long a hole is an option.
-  ProfileOptions wide;
-  wide.section.max_gap_mm = 40.0;
-  EXPECT_TRUE(extract(holed, wide));
+  ASSERT_TRUE(set) << set.error().message;
+  std::size_t filled_samples = 0;
+  double squares = 0.0, worst = 0.0;
+  std::size_t filled_points = 0;
+  auto in_hole = [](const ProfileCurve& c, double y) {
+    return std::ranges::any_of(c.holes, [&](const auto& h) { return y > h[0] && y < h[1]; });
+  };
+  for (const ProfileCurve& c : set->curves) {
+    // Curves well inside a hole have it, curves clear of both have none (the cut's edge is ragged).
+    if (std::abs(c.x + 17.0) < 12.0) EXPECT_TRUE(in_hole(c, 50.0)) << c.feature;
+    if (std::abs(c.x) < 16.0) EXPECT_TRUE(in_hole(c, -30.5)) << c.feature;
+    if (std::abs(c.x + 17.0) > 16.0 && std::abs(c.x) > 19.0) EXPECT_TRUE(c.holes.empty()) << c.feature;
+    for (const auto& h : c.holes)
+      EXPECT_LT(h[1] - h[0], 31.0);
+    // The filled points lie near the face the holes took away (they cannot know its lips and brow): the
+    // fill bends as little as it can, from the surface around it.
+    for (const Vec3& p : c.raw)
+      if (in_hole(c, p.y())) {
+        const double d = std::abs(p.z() - sample_face_height(p.x(), p.y()));
+        squares += d * d;
+        worst = std::max(worst, d);
+        ++filled_points;
+      }
+    for (std::size_t k = 0; k < c.points.size(); ++k)
+      filled_samples += c.filled[k];
+  }
+  ASSERT_GT(filled_points, 200U);
+  EXPECT_LT(std::sqrt(squares / static_cast<double>(filled_points)), 1.5);
+  EXPECT_LT(worst, 3.5);
+  EXPECT_GT(filled_samples, 10U);
+  EXPECT_GE(set->holes(), 14U);
+  EXPECT_GT(set->filled_fraction, 0.01);
+  EXPECT_LT(set->filled_fraction, 0.1);
+  EXPECT_NEAR(set->longest_hole_mm(), 30.0, 1.5);
+  // A hole longer than may be filled ends the curves that cross it, and the forehead is reported missing.
+  Result<ProfileSet> short_holes = extract(holed, {.max_hole_mm = 10.0});
+  ASSERT_TRUE(short_holes) << short_holes.error().message;
+  EXPECT_LT(short_holes->curves[9].extent[1], 40.0);
+  ASSERT_FALSE(short_holes->missing.empty());
+  EXPECT_NE(short_holes->missing.front().find("forehead"), std::string::npos) << short_holes->missing.front();
+}
+
+TEST(Profiles, AScanCutShortReconstructsWhatIsThereAndSaysWhatIsMissing) {
+  // The chin cut off below y = -45, and the face's left side beyond x = 25.
+  Result<ProfileSet> chin = extract(without(face(), [](const Vec3& c) { return c.y() < -45.0; }));
+  ASSERT_TRUE(chin) << chin.error().message;
+  for (const ProfileCurve& c : chin->curves)
+    EXPECT_GE(c.extent[0], -45.5) << c.feature;
+  ASSERT_EQ(chin->missing.size(), 1U);
+  EXPECT_NE(chin->missing[0].find("the chin"), std::string::npos) << chin->missing[0];
+  Result<ProfileSet> side = extract(without(face(), [](const Vec3& c) { return c.x() > 25.0; }));
+  ASSERT_TRUE(side) << side.error().message;
+  EXPECT_LE(side->border[1], 25.0);
+  EXPECT_NEAR(side->border[0], 1.06 * side->mask.half_width, 1e-9);
+  EXPECT_LE(side->curves.back().x, 25.0);
+  ASSERT_FALSE(side->missing.empty());
+  EXPECT_NE(side->missing.back().find("left side"), std::string::npos) << side->missing.back();
+  EXPECT_LT(side->mask_coverage, 0.9);
+  // Most of the face gone is refused, saying how much is there.
+  Result<ProfileSet> most = extract(without(face(), [](const Vec3& c) { return c.x() > -15.0; }));
+  ASSERT_FALSE(most);
+  EXPECT_EQ(most.error().code, ErrorCode::NoFace);
+  EXPECT_NE(most.error().message.find("most of the face is missing"), std::string::npos)
+      << most.error().message;
 }
 
 TEST(Profiles, MissingLandmarksAreNamed) {
@@ -199,16 +293,9 @@ TEST(Profiles, MissingLandmarksAreNamed) {
   l[Landmark::FaceTop].reset();
   Result<ProfileSet> set = extract_profiles(face(), l, {});
   ASSERT_FALSE(set);
-  EXPECT_EQ(set.error().code, ErrorCode::InvalidArgument);
-  EXPECT_NE(set.error().message.find("eye_inner_left"), std::string::npos) << set.error().message;
-  // The forehead is not needed when the height range is given.
-  l = sample_landmarks();
-  l[Landmark::FaceTop].reset();
-  ProfileOptions o;
-  o.planes.height_range = std::array<double, 2>{-40.0, 50.0};
-  Result<ProfileSet> given = extract_profiles(face(), l, {}, o);
-  ASSERT_TRUE(given) << given.error().message;
-  EXPECT_EQ(given->height_range, (std::array<double, 2>{-40.0, 50.0}));
+  // Bad data (a landmark file without them), not a bad call.
+  EXPECT_EQ(set.error().code, ErrorCode::NoFace);
+  EXPECT_NE(set.error().message.find("eye_inner_left, face_top"), std::string::npos) << set.error().message;
 }
 
 TEST(Profiles, PointCloudAgreesWithTheMesh) {
@@ -221,11 +308,10 @@ TEST(Profiles, PointCloudAgreesWithTheMesh) {
   double sum = 0.0;
   std::size_t n = 0;
   for (std::size_t j = 0; j < 28; ++j) {
-    // The border reaches as far as the outline at the ends of the height range, which a cloud gives
-    // only to about its spacing.
-    ASSERT_NEAR(cloud->curves[j].x, mesh->curves[j].x, 3.0);
+    ASSERT_NEAR(cloud->curves[j].x, mesh->curves[j].x, 1e-9);
+    EXPECT_NEAR(cloud->curves[j].extent[0], mesh->curves[j].extent[0], 2.0);
+    EXPECT_NEAR(cloud->curves[j].extent[1], mesh->curves[j].extent[1], 2.0);
     for (const Vec3& p : cloud->curves[j].raw) {
-      if (p.y() < mesh->height_range[0] || p.y() > mesh->height_range[1]) continue;
       sum += std::pow(p.z() - sample_face_height(p.x(), p.y()), 2);
       ++n;
     }
@@ -246,7 +332,11 @@ TEST(Profiles, JsonHoldsWhatLaterStagesNeed) {
   EXPECT_EQ(j["curves"][3]["points"].size(), set->k);
   EXPECT_EQ(j["points_per_curve"], set->k);
   EXPECT_EQ(j["parameter"], "arc_length");
-  EXPECT_EQ(j["sampling"], "parameter");
+  EXPECT_EQ(j["sampling"], "local_heights");
+  EXPECT_EQ(j["curves"][3]["extent"].size(), 2U);
+  EXPECT_EQ(j["curves"][3]["holes"].size(), 0U);
+  EXPECT_EQ(j["face_mask"]["half_width"], set->mask.half_width);
+  EXPECT_EQ(j["mask_coverage"], 1.0);
   EXPECT_EQ(j["evaluation"].size(), 4U);
   EXPECT_EQ(j["evaluation"][0]["points"].size(), set->evaluation[0].points.size());
   const std::string svg = profiles_svg(face(), *set, {.title = "a <title> & more"});

@@ -34,6 +34,36 @@ inline std::optional<std::filesystem::path> face(std::string_view name) {
   return path;
 }
 
+//! Every scan in ../shared/faces (MANIFEST.md): the facefuns averages and their copies in other formats,
+//! the point cloud, the turned and cut VRMLs, a head with hair, a 3D photo with a neck, two busts and the
+//! ICT faces with expressions, holes and capture defects.
+inline constexpr const char* kSharedScans[] = {
+    "facefuns_f18.ply",
+    "facefuns_f36.ply",
+    "facefuns_f56.ply",
+    "facefuns_m26.ply",
+    "facefuns_m46.ply",
+    "facefuns_m66.ply",
+    "facefuns_example.obj",
+    "facefuns_f36.glb",
+    "facefuns_m46.drc",
+    "facefuns_f56_points.ply",
+    "fran_cut.wrl",
+    "stfaces_neutral.wrl",
+    "james.obj",
+    "meshmonk_demoface.obj",
+    "demosthenes.obj",
+    "bust_man_wreath.obj",
+    "ict_00.obj",
+    "ict_01.ply",
+    "ict_02.glb",
+    "ict_03.wrl",
+    "ict_04.obj",
+    "ict_05.ply",
+    "ict_06.glb",
+    "ict_07.wrl",
+};
+
 //! A fresh empty folder, removed with everything in it when the object dies.
 class TempDir {
 public:

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 #include <limits>
 
@@ -13,27 +14,92 @@ namespace pdeface::compare {
 
 namespace {
 
-// The points of a section whose position along `along` lies in [lo, hi].
-metrics::Polyline within(const std::vector<Vec3>& points, const Vec3& along, double lo, double hi) {
+bool in_any(const std::vector<std::array<double, 2>>& gaps, double t) {
+  return std::ranges::any_of(gaps, [&](const auto& g) { return t > g[0] && t < g[1]; });
+}
+
+// The points of a section whose position along `along` lies in [lo, hi] and outside the gaps.
+metrics::Polyline within(const std::vector<Vec3>& points, const Vec3& along, double lo, double hi,
+                         const std::vector<std::array<double, 2>>& gaps = {}) {
   metrics::Polyline out;
   std::ranges::copy_if(points, std::back_inserter(out), [&](const Vec3& q) {
     const double t = along.dot(q);
-    return t >= lo && t <= hi;
+    return t >= lo && t <= hi && !in_any(gaps, t);
   });
   return out;
 }
 
+// A polyline cut into pieces at its gaps (no segment joins points across a hole); points inside a gap go.
+std::vector<metrics::Polyline> pieces(const std::vector<Vec3>& points, const Vec3& along,
+                                      const std::vector<std::array<double, 2>>& gaps) {
+  std::vector<metrics::Polyline> out(1);
+  std::size_t gap = 0;
+  for (const Vec3& p : points) {
+    const double t = along.dot(p);
+    if (in_any(gaps, t)) continue;
+    while (gap < gaps.size() && t >= gaps[gap][1]) {
+      if (!out.back().empty()) out.emplace_back();
+      ++gap;
+    }
+    out.back().push_back(p);
+  }
+  if (out.back().empty()) out.pop_back();
+  return out;
+}
+
+// The sections of the scan at every millimetre across the mask: what the face shows from the front.
+struct FrontView {
+  double x0 = 0.0, step = 1.0;
+  std::vector<slice::Section> columns;
+  [[nodiscard]] std::optional<double> front_z(double x, double y) const {
+    const double k = std::round((x - x0) / step);
+    if (k < 0 || k >= static_cast<double>(columns.size())) return std::nullopt;
+    const auto p = slice::section_at(columns[static_cast<std::size_t>(k)], {}, y);
+    return p ? std::optional<double>(p->z()) : std::nullopt;
+  }
+};
+
+FrontView front_view(const Mesh& scan, const slice::FaceMask& mask, double step) {
+  FrontView view{-mask.half_width, step, {}};
+  std::vector<double> offsets;
+  for (double x = view.x0; x <= mask.half_width + 0.5 * step; x += step)
+    offsets.push_back(x);
+  view.columns = slice::sections(scan, Vec3::UnitX(), offsets, {});
+  return view;
+}
+
 } // namespace
 
-Box face_region(const slice::ProfileSet& profiles, double depth_margin_mm) {
+FaceRegion face_region(const slice::ProfileSet& profiles, double depth_margin_mm) {
   double deepest = std::numeric_limits<double>::infinity();
   for (const slice::ProfileCurve& c : profiles.curves)
     for (const Vec3& p : c.raw)
       deepest = std::min(deepest, p.z());
-  Box region;
-  region.min = Vec3(-profiles.border_mm, profiles.height_range[0], deepest - depth_margin_mm);
-  region.max = Vec3(profiles.border_mm, profiles.height_range[1], std::numeric_limits<double>::infinity());
-  return region;
+  return {profiles.region(), deepest - depth_margin_mm};
+}
+
+Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask, const Mesh& reconstruction,
+                                  const FidelityOptions& options) {
+  if (scan.positions.empty() || reconstruction.positions.empty())
+    return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
+  const FrontView view = front_view(scan, mask, 1.0);
+  const metrics::SurfaceDistance to_reconstruction(reconstruction);
+  std::vector<double> distances;
+  std::size_t near = 0;
+  for (const Vec3& p : metrics::sample_surface(scan, options.sample_spacing_mm)) {
+    if (!mask.contains(p)) continue;
+    const std::optional<double> front = view.front_z(p.x(), p.y());
+    if (front && p.z() < *front - options.front_tolerance_mm) continue; // hidden behind the face
+    const double d = to_reconstruction.distance(p);
+    distances.push_back(d);
+    if (d <= options.covered_within_mm) ++near;
+  }
+  if (distances.empty())
+    return make_error(ErrorCode::InvalidArgument, "coverage: no sample of the scan lies in the face mask");
+  Coverage c;
+  c.share = static_cast<double>(near) / static_cast<double>(distances.size());
+  c.distance = metrics::statistics(std::move(distances));
+  return c;
 }
 
 Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& profiles,
@@ -41,9 +107,9 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
   if (profiles.evaluation.size() != 4)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("expected 4 evaluation profiles, got {}", profiles.evaluation.size()));
-  // The reconstruction cut by the same 4 planes, its front-most part within each original's extent. A
-  // reconstruction that falls short of the range is measured where it exists (the surface distance sees
-  // what is missing).
+  // The reconstruction cut by the same 4 planes, its front-most part within each original's extent and
+  // outside its gaps. A reconstruction that falls short of the range is measured where it exists (the
+  // surface distance sees what is missing).
   std::vector<slice::Plane> planes;
   std::vector<slice::ProfileAxes> axes;
   for (const slice::EvaluationProfile& e : profiles.evaluation) {
@@ -57,36 +123,44 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
     if (e.points.empty())
       return make_error(ErrorCode::InvalidArgument, fmt::format("the {} profile is empty", e.name));
     const double lo = e.along.dot(e.points.front()), hi = e.along.dot(e.points.back());
-    const metrics::Polyline rebuilt = within(evaluation[i].points, e.along, lo, hi);
+    const metrics::Polyline rebuilt = within(evaluation[i].points, e.along, lo, hi, e.gaps);
     if (rebuilt.empty())
       return make_error(
           ErrorCode::NoFace,
           fmt::format("the reconstruction has no surface on the {} evaluation profile", e.name));
-    const metrics::Polyline original[] = {e.points};
-    f.profile_error[i] = metrics::profile_error(std::span(&rebuilt, 1), original);
+    f.profile_error[i] = metrics::profile_error(std::span(&rebuilt, 1), pieces(e.points, e.along, e.gaps));
     f.mean_profile_error += f.profile_error[i] / 4.0;
   }
 
-  // The reconstruction cut by the curves' planes (its front-most part within the height range), against
-  // each raw profile.
+  // The reconstruction cut by the curves' planes (its front-most part within each curve's extent, outside
+  // its holes), against the scan's part of each raw profile.
   // The border curves lie on the reconstruction's edge: they are cut 1 µm inside it, where it surely is.
+  const double x_lo = profiles.curves.front().x + 1e-3, x_hi = profiles.curves.back().x - 1e-3;
   std::vector<double> offsets;
   for (const slice::ProfileCurve& c : profiles.curves)
-    offsets.push_back(std::clamp(c.x, -profiles.border_mm + 1e-3, profiles.border_mm - 1e-3));
+    offsets.push_back(std::clamp(c.x, x_lo, x_hi));
   const std::vector<slice::Section> cuts = slice::sections(reconstruction, Vec3::UnitX(), offsets, {});
-  const auto [lo, hi] = profiles.height_range;
   for (std::size_t j = 0; j < profiles.curves.size(); ++j) {
-    const metrics::Polyline rebuilt = within(cuts[j].points, Vec3::UnitY(), lo, hi);
-    const metrics::Polyline original[] = {profiles.curves[j].raw};
-    f.curve_error += metrics::profile_error(std::span(&rebuilt, 1), original) /
+    const slice::ProfileCurve& c = profiles.curves[j];
+    const metrics::Polyline rebuilt =
+        within(cuts[j].points, Vec3::UnitY(), c.extent[0], c.extent[1], c.holes);
+    f.curve_error += metrics::profile_error(std::span(&rebuilt, 1), pieces(c.raw, Vec3::UnitY(), c.holes)) /
                      static_cast<double>(profiles.curves.size());
   }
 
+  const FaceRegion region = face_region(profiles, options.depth_margin_mm);
   Result<metrics::TwoSidedDistance> distance = metrics::surface_distance(
       scan, reconstruction,
-      {.spacing = options.sample_spacing_mm, .region = face_region(profiles, options.depth_margin_mm)});
+      {.spacing = options.sample_spacing_mm,
+       .region = std::nullopt,
+       .keep_a = [&](const Vec3& p) { return region.contains(p); },
+       .keep_b =
+           [&](const Vec3& p) { return region.contains(p) && !region.curves.filled_at(p.x(), p.y()); }});
   if (!distance) return std::move(distance).error();
   f.surface = *distance;
+  Result<Coverage> coverage = measure_coverage(scan, profiles.mask, reconstruction, options);
+  if (!coverage) return std::move(coverage).error();
+  f.coverage = *coverage;
   return f;
 }
 

@@ -19,7 +19,7 @@ std::size_t points_over(double length, double spacing) {
   return std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(length / spacing)) + 1);
 }
 
-double width(const slice::ProfileSet& p) { return 2.0 * p.border_mm; }
+double width(const slice::ProfileSet& p) { return p.border[0] + p.border[1]; }
 double height(const slice::ProfileSet& p) { return p.height_range[1] - p.height_range[0]; }
 
 } // namespace

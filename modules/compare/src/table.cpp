@@ -154,6 +154,9 @@ std::string table_markdown(std::span<const TableRow> rows) {
       "Profile error: the paper's Table I measure, the mean distance from the reconstructed to the original "
       "profile on 4 planes (symmetry, eyes, two diagonals through the nose tip), averaged over the planes. "
       "Surface distance: two-sided, between the scan and the PDE surface within the face region the "
+      "curves cover (the reconstruction's side leaves out the holes it filled). Face coverage: how much of "
+      "the face, as its landmarks outline it (an ellipse from the chin to the forehead, across the cheeks "
+      "just beyond the outer eye corners), lies within 1 mm of the reconstruction, whatever the region the "
       "curves cover.\n";
   summary(out, rows, "Profile error (mm)", [](const Fidelity& f) { return f.mean_profile_error; });
   summary(out, rows, "Profile error on the curves' own planes (mm)",
@@ -161,24 +164,31 @@ std::string table_markdown(std::span<const TableRow> rows) {
   summary(out, rows, "Surface distance, mean (mm)", [](const Fidelity& f) { return f.surface.both.mean; });
   summary(out, rows, "Surface distance, 95th percentile (mm)",
           [](const Fidelity& f) { return f.surface.both.p95; });
+  summary(out, rows, "Face coverage: share of the scan's face mask within 1 mm of the reconstruction (%)",
+          [](const Fidelity& f) { return 100.0 * f.coverage.share; });
+  summary(out, rows, "Face mask: scan to reconstruction, mean (mm)",
+          [](const Fidelity& f) { return f.coverage.distance.mean; });
 
-  out += "\n## Every scan\n\n| scan | ratio | K | scheme | N | a | symmetry | eyes | diagonal up | diagonal "
-         "down | profile error | on the curves | surface mean | RMS | p95 | max | max / diagonal |\n"
-         "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  out +=
+      "\n## Every scan\n\n| scan | ratio | K | scheme | N | a | symmetry | eyes | diagonal up | diagonal "
+      "down | profile error | on the curves | surface mean | RMS | p95 | max | max / diagonal | coverage | "
+      "mask mean |\n"
+      "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const TableRow& r : rows) {
     out += fmt::format("| {} | {} | {} | {} |", r.scan, percent(r.ratio), r.k, pde::to_string(r.scheme));
     if (!r.fidelity) {
       out += fmt::format(" – | – | failed: {} |{}\n", r.failure,
-                         std::string_view(" |  |  |  |  |  |  |  |  |  |"));
+                         std::string_view(" |  |  |  |  |  |  |  |  |  |  |  |"));
       continue;
     }
     const Fidelity& f = *r.fidelity;
     const metrics::DistanceStats& d = f.surface.both;
-    out += fmt::format(" {} | {:.3f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2e} |\n", r.modes,
-                       r.smoothing, number(f.profile_error[0]), number(f.profile_error[1]),
-                       number(f.profile_error[2]), number(f.profile_error[3]), number(f.mean_profile_error),
-                       number(f.curve_error), number(d.mean), number(d.rms), number(d.p95), number(d.max),
-                       d.max / f.surface.diagonal);
+    out += fmt::format(
+        " {} | {:.3f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2e} | {:.1f} % | {} |\n",
+        r.modes, r.smoothing, number(f.profile_error[0]), number(f.profile_error[1]),
+        number(f.profile_error[2]), number(f.profile_error[3]), number(f.mean_profile_error),
+        number(f.curve_error), number(d.mean), number(d.rms), number(d.p95), number(d.max),
+        d.max / f.surface.diagonal, 100.0 * f.coverage.share, number(f.coverage.distance.mean));
   }
   return out;
 }
@@ -187,7 +197,7 @@ std::string table_csv(std::span<const TableRow> rows) {
   std::string out =
       "scan,ratio,k,scheme,modes,smoothing,profile_symmetry_mm,profile_eyes_mm,"
       "profile_diagonal_up_mm,profile_diagonal_down_mm,profile_mean_mm,curve_error_mm,surface_mean_mm,"
-      "surface_rms_mm,surface_p95_mm,surface_max_mm,diagonal_mm,failure\n";
+      "surface_rms_mm,surface_p95_mm,surface_max_mm,diagonal_mm,coverage,mask_mean_mm,failure\n";
   const auto quoted = [](const std::string& text) {
     std::string q = "\"";
     for (char c : text)
@@ -199,14 +209,14 @@ std::string table_csv(std::span<const TableRow> rows) {
     if (r.fidelity) {
       const Fidelity& f = *r.fidelity;
       const metrics::DistanceStats& d = f.surface.both;
-      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},", r.modes, csv_number(r.smoothing),
-                         csv_number(f.profile_error[0]), csv_number(f.profile_error[1]),
-                         csv_number(f.profile_error[2]), csv_number(f.profile_error[3]),
-                         csv_number(f.mean_profile_error), csv_number(f.curve_error), csv_number(d.mean),
-                         csv_number(d.rms), csv_number(d.p95), csv_number(d.max),
-                         csv_number(f.surface.diagonal));
+      out += fmt::format(
+          "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},", r.modes, csv_number(r.smoothing),
+          csv_number(f.profile_error[0]), csv_number(f.profile_error[1]), csv_number(f.profile_error[2]),
+          csv_number(f.profile_error[3]), csv_number(f.mean_profile_error), csv_number(f.curve_error),
+          csv_number(d.mean), csv_number(d.rms), csv_number(d.p95), csv_number(d.max),
+          csv_number(f.surface.diagonal), csv_number(f.coverage.share), csv_number(f.coverage.distance.mean));
     } else {
-      out += std::string(13, ',') + quoted(r.failure);
+      out += std::string(15, ',') + quoted(r.failure);
     }
     out += "\n";
   }

@@ -171,12 +171,14 @@ DistanceStats statistics(std::vector<double> d) {
 
 namespace {
 
-std::vector<double> one_way(const Mesh& from, const SurfaceDistance& to, const DistanceOptions& options) {
+std::vector<double> one_way(const Mesh& from, const SurfaceDistance& to, const DistanceOptions& options,
+                            const std::function<bool(const Vec3&)>& keep) {
   std::vector<double> d;
   for (const Vec3& p : sample_surface(from, options.spacing)) {
     if (options.region &&
         ((p.array() < options.region->min.array()).any() || (p.array() > options.region->max.array()).any()))
       continue;
+    if (keep && !keep(p)) continue;
     d.push_back(to.distance(p));
   }
   return d;
@@ -188,8 +190,8 @@ Result<TwoSidedDistance> surface_distance(const Mesh& a, const Mesh& b, const Di
   if (a.positions.empty() || b.positions.empty())
     return make_error(ErrorCode::InvalidArgument, "surface distance: a mesh is empty");
   const SurfaceDistance to_a(a), to_b(b);
-  std::vector<double> ab = one_way(a, to_b, options);
-  std::vector<double> ba = one_way(b, to_a, options);
+  std::vector<double> ab = one_way(a, to_b, options, options.keep_a);
+  std::vector<double> ba = one_way(b, to_a, options, options.keep_b);
   if (ab.empty() || ba.empty())
     return make_error(ErrorCode::InvalidArgument,
                       "surface distance: no sample of one of the meshes lies in the region");
@@ -201,8 +203,9 @@ Result<TwoSidedDistance> surface_distance(const Mesh& a, const Mesh& b, const Di
   out.both = statistics(std::move(all));
   Box box;
   for (const Vec3& p : a.positions)
-    if (!options.region || ((p.array() >= options.region->min.array()).all() &&
-                            (p.array() <= options.region->max.array()).all()))
+    if ((!options.region || ((p.array() >= options.region->min.array()).all() &&
+                             (p.array() <= options.region->max.array()).all())) &&
+        (!options.keep_a || options.keep_a(p)))
       box.extend(p);
   out.diagonal = box.diagonal();
   return out;

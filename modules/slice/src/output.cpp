@@ -46,6 +46,15 @@ std::string write_profiles_json(const ProfileSet& set) {
                        {"scan_units", to_string(set.frame.scan_units)}};
   j["height_range"] = {set.height_range[0], set.height_range[1]};
   j["border"] = set.border_mm;
+  j["border_right_left"] = {set.border[0], set.border[1]};
+  j["face_mask"] = {{"centre_y", set.mask.centre_y},
+                    {"half_width", set.mask.half_width},
+                    {"half_height", set.mask.half_height},
+                    {"min_z", set.mask.min_z}};
+  j["mask_coverage"] = set.mask_coverage;
+  j["max_hole"] = set.max_hole_mm;
+  j["filled_fraction"] = set.filled_fraction;
+  j["missing"] = set.missing;
   j["central_width"] = set.central_width_mm;
   j["eye_height"] = set.eye_height_mm;
   j["parameter"] = to_string(set.parameter);
@@ -53,23 +62,35 @@ std::string write_profiles_json(const ProfileSet& set) {
   j["sampling_ratio"] = set.ratio;
   j["points_per_curve"] = set.k;
   j["reference_points"] = set.reference_points;
+  j["raw_points"] = set.raw_points;
   j["point_cloud"] = set.point_cloud;
   if (set.point_cloud) j["point_spacing"] = set.spacing_mm;
   nlohmann::json curves = nlohmann::json::array();
-  for (const ProfileCurve& c : set.curves)
+  for (const ProfileCurve& c : set.curves) {
+    nlohmann::json holes = nlohmann::json::array(), filled = nlohmann::json::array();
+    for (const auto& h : c.holes)
+      holes.push_back({h[0], h[1]});
+    for (std::size_t k = 0; k < c.filled.size(); ++k)
+      if (c.filled[k]) filled.push_back(k);
     curves.push_back({{"index", c.index},
                       {"x", c.x},
                       {"role", to_string(c.role)},
                       {"feature", c.feature},
+                      {"extent", {c.extent[0], c.extent[1]}},
+                      {"ends", {to_string(c.ends[0]), to_string(c.ends[1])}},
                       {"raw_points", c.raw.size()},
-                      {"bridged", c.bridged},
+                      {"surface_points", c.surface_points},
+                      {"holes", std::move(holes)},
+                      {"filled", std::move(filled)},
                       {"points", to_json(c.points)}});
+  }
   j["curves"] = std::move(curves);
   nlohmann::json evaluation = nlohmann::json::array();
   for (const EvaluationProfile& e : set.evaluation)
     evaluation.push_back({{"name", e.name},
                           {"plane", {{"normal", to_json(e.plane.normal)}, {"offset", e.plane.offset}}},
                           {"along", to_json(e.along)},
+                          {"gaps", e.gaps},
                           {"points", to_json(e.points)}});
   j["evaluation"] = std::move(evaluation);
   return j.dump(1) + "\n";

@@ -1,5 +1,7 @@
 #include "pdeface/slice/planes.hpp"
 
+#include "landmark_check.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -22,14 +24,6 @@ double density(const Mesh& scan, const SectionOptions& section) {
   auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
   std::nth_element(lengths.begin(), mid, lengths.end());
   return *mid;
-}
-
-Result<void> require(const align::Landmarks& landmarks, std::initializer_list<Landmark> needed) {
-  std::string missing;
-  for (Landmark l : needed)
-    if (!landmarks.has(l)) missing += fmt::format("{}{}", missing.empty() ? "" : ", ", align::name(l));
-  if (missing.empty()) return {};
-  return make_error(ErrorCode::InvalidArgument, fmt::format("profile planes need the landmarks {}", missing));
 }
 
 double mean_abs_x(const align::Landmarks& l, Landmark a, Landmark b) {
@@ -61,8 +55,20 @@ namespace {
 Result<double> width_along(const Section& eye_line, const align::Landmarks& landmarks, double height,
                            const SectionOptions& section) {
   const ProfileAxes axes{Vec3::UnitX(), Vec3::UnitZ()};
-  Result<Profile> line = clip(eye_line, axes, landmarks[Landmark::EyeOuterRight]->x(),
-                              landmarks[Landmark::EyeOuterLeft]->x(), section, "x");
+  // A corner at the end of an eye hole may lie just inside it: the line starts on the nearest surface
+  // inwards, within a hole's length.
+  double lo = landmarks[Landmark::EyeOuterRight]->x(), hi = landmarks[Landmark::EyeOuterLeft]->x();
+  const auto& cover = eye_line.cover;
+  if (!section_at(eye_line, axes, lo))
+    if (const auto next = std::ranges::find_if(cover, [&](const auto& c) { return c[0] > lo; });
+        next != cover.end() && (*next)[0] - lo <= section.max_gap_mm)
+      lo = (*next)[0];
+  if (!section_at(eye_line, axes, hi))
+    if (const auto next =
+            std::ranges::find_if(cover.rbegin(), cover.rend(), [&](const auto& c) { return c[1] < hi; });
+        next != cover.rend() && hi - (*next)[1] <= section.max_gap_mm)
+      hi = (*next)[1];
+  Result<Profile> line = clip(eye_line, axes, lo, hi, section, "x");
   if (!line)
     return make_error(ErrorCode::NoFace,
                       fmt::format("the cross-section through the outer eye corners (y = {:.1f} "
@@ -82,7 +88,10 @@ double eye_line_height(const align::Landmarks& l) {
 
 Result<double> central_width(const Mesh& canonical, const align::Landmarks& landmarks,
                              const SectionOptions& section) {
-  if (auto ok = require(landmarks, {Landmark::EyeOuterLeft, Landmark::EyeOuterRight}); !ok) return ok.error();
+  if (auto ok = detail::require_landmarks(landmarks, {Landmark::EyeOuterLeft, Landmark::EyeOuterRight},
+                                          "the central width");
+      !ok)
+    return ok.error();
   const double height = eye_line_height(landmarks);
   const std::vector<Section> cut =
       sections(canonical, Vec3::UnitY(), std::span(&height, 1), {Vec3::UnitX(), Vec3::UnitZ()}, section);
@@ -98,75 +107,87 @@ Result<PlaneLayout> profile_planes(const Mesh& canonical, const align::Landmarks
         fmt::format("{} curves cannot make a symmetric layout of patches: the count must be "
                     "3 · patches + 1 with an odd number of patches (4, 10, 16, 22, 28, 34, ...)",
                     n));
-  if (auto ok = require(landmarks, {Landmark::EyeInnerLeft, Landmark::EyeInnerRight, Landmark::EyeOuterLeft,
-                                    Landmark::EyeOuterRight});
+  if (auto ok = detail::require_landmarks(landmarks,
+                                          {Landmark::NoseTip, Landmark::EyeInnerLeft, Landmark::EyeInnerRight,
+                                           Landmark::EyeOuterLeft, Landmark::EyeOuterRight},
+                                          "placing the profile planes");
       !ok)
     return ok.error();
+  Result<FaceMask> mask = face_mask(landmarks, options.mask);
+  if (!mask) return mask.error();
   PlaneLayout layout;
-  if (options.height_range) {
-    layout.target = *options.height_range;
-  } else {
-    if (auto ok = require(landmarks, {Landmark::FaceBottom, Landmark::FaceTop}); !ok) return ok.error();
-    layout.target = {landmarks[Landmark::FaceBottom]->y(), landmarks[Landmark::FaceTop]->y()};
-  }
-  if (!(layout.target[0] < layout.target[1]))
-    return make_error(ErrorCode::InvalidArgument, fmt::format("empty height range [{:.1f}, {:.1f}] mm",
-                                                              layout.target[0], layout.target[1]));
+  layout.mask = *mask;
 
-  // One pass over the scan for three horizontal sections: the eye line (for W) and the two heights the
-  // face border must reach (the height range less the slack at each end, for ragged outlines).
+  // One pass over the scan for the horizontal sections: the eye line (for W) and three heights across the
+  // middle of the face mask, on which the border must still be on the face.
   layout.eye_height_mm = eye_line_height(landmarks);
-  const std::array<double, 3> heights{layout.eye_height_mm, layout.target[0] + options.border_slack_mm,
-                                      layout.target[1] - options.border_slack_mm};
+  const double c = mask->centre_y, b = mask->half_height;
+  const std::array<double, 4> heights{layout.eye_height_mm, c - 0.35 * b, c, c + 0.35 * b};
   const std::vector<Section> cuts =
       sections(canonical, Vec3::UnitY(), heights, {Vec3::UnitX(), Vec3::UnitZ()}, section);
   Result<double> width = width_along(cuts[0], landmarks, layout.eye_height_mm, section);
   if (!width) return width.error();
   layout.central_width_mm = *width;
-  const double W = *width;
   const double inner = mean_abs_x(landmarks, Landmark::EyeInnerLeft, Landmark::EyeInnerRight);
   const double outer = mean_abs_x(landmarks, Landmark::EyeOuterLeft, Landmark::EyeOuterRight);
 
-  // The face border: as wide as the face still is at both ends of the height range, within
-  // [narrowest, widest].
+  // The face border, each side on its own: beyond the mask, unless the surface ends or turns away first.
   const double edge = density(canonical, section);
-  const double narrowest = outer + std::max({options.min_border_fraction * W, options.min_spacing_mm, edge});
-  const double widest = std::max(narrowest, outer + options.border_fraction * W);
-  double reach = widest;
-  for (std::size_t k = 1; k < 3; ++k) {
-    const auto extent = covered_extent(cuts[k], 0.0, section.max_gap_mm);
-    reach = std::min({reach, -extent[0], extent[1]});
-  }
-  layout.border_mm = std::clamp(reach, narrowest, widest);
-
-  const std::array<double, 5> features{options.wing_fraction * inner, inner, 0.5 * (inner + outer), outer,
-                                       layout.border_mm};
-  static constexpr std::array<const char*, 5> kNames{"nose wing", "inner eye corner", "eye centre",
-                                                     "outer eye corner", "face border"};
   const double min_gap = std::max(options.min_spacing_mm, edge);
-  for (std::size_t k = 0; k < features.size(); ++k) {
-    const double previous = k == 0 ? 0.0 : features[k - 1];
-    if (features[k] - previous < min_gap)
-      return make_error(
-          ErrorCode::NoFace,
-          fmt::format("the {} joint (|x| = {:.1f} mm) is within {:.1f} mm of the {} (|x| = {:.1f} "
-                      "mm): the features do not leave room for a patch between them",
-                      kNames[k], features[k], min_gap, k == 0 ? "midline" : kNames[k - 1], previous));
+  const double target = options.border_beyond_mask * mask->half_width;
+  const ProfileAxes across{Vec3::UnitX(), Vec3::UnitZ()};
+  std::array<std::array<double, 5>, 2> features{};
+  for (std::size_t side = 0; side < 2; ++side) {
+    const double sign = side == 0 ? -1.0 : 1.0;
+    double border = target;
+    for (std::size_t k = 1; k < cuts.size(); ++k) {
+      // Holes across the face (an open mouth, the eyes of a mesh without eyeballs) do not end it.
+      const Reach r = reach(cuts[k], across, 0.0,
+                            {.limit = sign * target,
+                             .max_hole_mm = std::max(section.max_gap_mm, mask->half_width),
+                             .turn_from = sign * outer,
+                             .max_turn_deg = options.max_turn_deg});
+      if (std::abs(r.end) < border) {
+        border = std::abs(r.end);
+        layout.border_limited[side] = r.why;
+      }
+    }
+    layout.border[side] = border;
+    // Where the side ends inside the outer eye corner (a scan cut short), its joints are drawn in.
+    const double room = outer + std::max(4.0, 2.0 * min_gap);
+    const double shrink = std::min(1.0, border / room);
+    features[side] = {shrink * options.wing_fraction * inner, shrink * inner, shrink * 0.5 * (inner + outer),
+                      shrink * outer, border};
   }
+  layout.border_mm = std::max(layout.border[0], layout.border[1]);
 
-  // Joints, symmetric, ascending: −b … −w, w … b; then two intermediates inside every patch.
+  static constexpr std::array<const char*, 5> kNames{"nose side", "inner eye corner", "eye centre",
+                                                     "outer eye corner", "face border"};
+  for (std::size_t side = 0; side < 2; ++side)
+    for (std::size_t k = 0; k < 5; ++k) {
+      const double previous = k == 0 ? 0.0 : features[side][k - 1];
+      if (features[side][k] - previous < min_gap)
+        return make_error(
+            ErrorCode::NoFace,
+            fmt::format("the {} joint (|x| = {:.1f} mm, {}) is within {:.1f} mm of the {} (|x| = "
+                        "{:.1f} mm): the features do not leave room for a patch between them",
+                        kNames[k], features[side][k], side == 0 ? "right" : "left", min_gap,
+                        k == 0 ? "midline" : kNames[k - 1], previous));
+    }
+
+  // Joints, ascending: −b … −w, w … b; then two intermediates inside every patch.
   const std::size_t patches = (n - 1) / 3, per_side = (patches + 1) / 2;
-  const std::vector<double> side = spread(features, per_side);
+  const std::vector<double> right = spread(features[0], per_side), left = spread(features[1], per_side);
   std::vector<ProfilePlane> joints;
   for (std::size_t k = per_side; k-- > 0;)
-    joints.push_back({-side[k], PlaneRole::Joint, ""});
+    joints.push_back({-right[k], PlaneRole::Joint, ""});
   for (std::size_t k = 0; k < per_side; ++k)
-    joints.push_back({side[k], PlaneRole::Joint, ""});
+    joints.push_back({left[k], PlaneRole::Joint, ""});
   for (std::size_t j = 0; j < joints.size(); ++j) {
-    const bool left = joints[j].x > 0;
-    const std::size_t rank = left ? j - per_side : per_side - 1 - j;
-    joints[j].feature = per_side == 5 ? fmt::format("{} ({})", kNames[rank], left ? "left" : "right")
-                                      : fmt::format("joint {} ({})", rank + 1, left ? "left" : "right");
+    const bool is_left = joints[j].x > 0;
+    const std::size_t rank = is_left ? j - per_side : per_side - 1 - j;
+    joints[j].feature = per_side == 5 ? fmt::format("{} ({})", kNames[rank], is_left ? "left" : "right")
+                                      : fmt::format("joint {} ({})", rank + 1, is_left ? "left" : "right");
   }
   for (std::size_t j = 0; j < joints.size(); ++j) {
     layout.planes.push_back(joints[j]);

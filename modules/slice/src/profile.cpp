@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 namespace pdeface::slice {
@@ -259,6 +260,78 @@ std::array<double, 2> covered_extent(const Section& section, double seed, double
   while (last + 1 < cover.size() && cover[last + 1][0] - cover[last][1] <= max_gap_mm)
     ++last;
   return {cover[first][0], cover[last][1]};
+}
+
+std::string_view to_string(ReachEnd end) noexcept {
+  switch (end) {
+  case ReachEnd::Limit: return "limit";
+  case ReachEnd::SurfaceEnd: return "surface_end";
+  case ReachEnd::TurnsAway: return "turns_away";
+  }
+  return "limit";
+}
+
+std::optional<Vec3> section_at(const Section& section, const ProfileAxes& axes, double u) {
+  const auto& cover = section.cover;
+  const auto it = std::lower_bound(cover.begin(), cover.end(), u,
+                                   [](const std::array<double, 2>& c, double h) { return c[1] < h; });
+  if (it == cover.end() || (*it)[0] > u || section.points.empty()) return std::nullopt;
+  return interpolate(section.points, axes, u);
+}
+
+std::vector<std::array<double, 2>> holes_within(const Section& section, double lo, double hi) {
+  std::vector<std::array<double, 2>> out;
+  const auto& cover = section.cover;
+  for (std::size_t k = 1; k < cover.size(); ++k)
+    if (cover[k - 1][1] >= lo && cover[k][0] <= hi) out.push_back({cover[k - 1][1], cover[k][0]});
+  return out;
+}
+
+Reach reach(const Section& section, const ProfileAxes& axes, double seed, const ReachOptions& options) {
+  const auto& cover = section.cover;
+  const double dir = options.limit >= seed ? 1.0 : -1.0;
+  if (cover.empty() || section.points.empty()) return {seed, ReachEnd::SurfaceEnd};
+  // The interval holding the seed, else the nearest one.
+  std::size_t k = 0;
+  double best = kInf;
+  for (std::size_t i = 0; i < cover.size(); ++i) {
+    const double d = seed < cover[i][0] ? cover[i][0] - seed : seed > cover[i][1] ? seed - cover[i][1] : 0.0;
+    if (d < best) best = d, k = i;
+  }
+  const double start = std::clamp(seed, cover[k][0], cover[k][1]);
+  if ((options.limit - start) * dir <= 0.0) return {options.limit, ReachEnd::Limit};
+  Reach out{start, ReachEnd::Limit};
+  for (;;) {
+    const double edge = dir > 0 ? cover[k][1] : cover[k][0];
+    if ((edge - options.limit) * dir >= 0.0) {
+      out.end = options.limit;
+      break;
+    }
+    const bool last = dir > 0 ? k + 1 == cover.size() : k == 0;
+    const std::size_t next = dir > 0 ? k + 1 : k - 1;
+    if (last || std::abs((dir > 0 ? cover[next][0] : cover[next][1]) - edge) > options.max_hole_mm) {
+      out = {edge, ReachEnd::SurfaceEnd};
+      break;
+    }
+    k = next;
+  }
+  if (!options.turn_from) return out;
+  // Where the surface falls back more steeply than the turn allows, over the window, it faces away.
+  const double steep = std::tan(options.max_turn_deg * std::numbers::pi / 180.0);
+  const double from = (*options.turn_from - start) * dir > 0.0 ? *options.turn_from : start;
+  std::vector<double> heights;
+  for (const Vec3& p : section.points) {
+    const double u = axes.along.dot(p);
+    if ((u - from) * dir >= 0.0 && (out.end - u) * dir >= 0.0) heights.push_back(u);
+  }
+  if (dir < 0) std::reverse(heights.begin(), heights.end());
+  for (double u : heights) {
+    const std::optional<Vec3> here = section_at(section, axes, u);
+    const std::optional<Vec3> ahead = section_at(section, axes, u + dir * options.window_mm);
+    if (!here || !ahead) continue;
+    if (axes.front.dot(*here - *ahead) > steep * options.window_mm) return {u, ReachEnd::TurnsAway};
+  }
+  return out;
 }
 
 Result<Profile> clip(const Section& section, const ProfileAxes& axes, double lo, double hi,

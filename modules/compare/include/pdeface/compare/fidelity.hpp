@@ -15,27 +15,53 @@ namespace pdeface::compare {
 struct FidelityOptions {
   double sample_spacing_mm = 0.5; //!< surface samples for the distance, on each side
   double depth_margin_mm = 10.0;  //!< the face region reaches this far behind the deepest curve point
+  double covered_within_mm = 1.0; //!< coverage: a sample of the scan's face this near the reconstruction
+  //! Coverage: samples of the scan more than this behind its front-most surface (seen from the front: the
+  //! inside of the mouth and nostrils, behind the eyelids) are hidden, not the face.
+  double front_tolerance_mm = 2.0;
+};
+
+//! How much of a scan's face (the landmark mask, `slice::face_mask`) a reconstruction covers.
+struct Coverage {
+  double share = 0.0;              //!< of the face's samples within `covered_within_mm` of the reconstruction
+  metrics::DistanceStats distance; //!< scan → reconstruction, inside the mask (mm)
 };
 
 struct Fidelity {
   //! The paper's profile error (mm) of each evaluation profile, in the order of `ProfileSet::evaluation`
-  //! (symmetry, eyes, diagonal up, diagonal down).
+  //! (symmetry, eyes, diagonal up, diagonal down), where the scan has surface.
   std::array<double, 4> profile_error{};
   double mean_profile_error = 0.0; //!< their mean: the paper's Table I figure
   //! The same measure on the planes of the curves themselves (mean over the curves): what fitting and
   //! resampling each profile to K points lost, without what lies between the curves.
   double curve_error = 0.0;
-  metrics::TwoSidedDistance surface; //!< mm, within `face_region`
+  //! mm, within `face_region`; `a_to_b` is scan → reconstruction, `b_to_a` reconstruction → scan except
+  //! over the holes the curves filled (the scan has nothing there to compare with).
+  metrics::TwoSidedDistance surface;
+  Coverage coverage; //!< of the face mask, which does not depend on the reconstruction's own region
 };
 
-//! The face region the curves describe (canonical frame, mm): x within the border curves, y within the
-//! height range, z from `depth_margin_mm` behind the deepest curve point to anything in front. The back of
-//! a head, ears and neck fall outside.
-[[nodiscard]] Box face_region(const slice::ProfileSet& profiles, double depth_margin_mm);
+//! The face region the curves describe (canonical frame, mm): within the curves' region (`CurveRegion`: each
+//! curve's extent, linearly in between), from `depth_margin_mm` behind the deepest curve point to anything
+//! in front. The back of a head, ears and neck fall outside.
+struct FaceRegion {
+  slice::CurveRegion curves;
+  double min_z = 0.0;
+  [[nodiscard]] bool contains(const Vec3& p) const { return p.z() >= min_z && curves.contains(p.x(), p.y()); }
+};
+[[nodiscard]] FaceRegion face_region(const slice::ProfileSet& profiles, double depth_margin_mm);
+
+//! The share of `scan`'s face (its front-most surface inside `mask`) within `options.covered_within_mm` of
+//! `reconstruction`, and the distances (both canonical, mm). Errors: `InvalidArgument` when no sample of
+//! the scan lies in the mask.
+[[nodiscard]] Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask,
+                                                const Mesh& reconstruction,
+                                                const FidelityOptions& options = {});
 
 //! Compares `reconstruction` (canonical frame, e.g. `Reconstruction::canonical`) with `scan` (the scan in
 //! the canonical frame) on the planes and region of `profiles`: each evaluation profile of the
-//! reconstruction is its front-most cut within the original profile's extent, measured where it exists.
+//! reconstruction is its front-most cut within the original profile's extent, measured where the scan has
+//! surface; and the coverage of the face mask (`profiles.mask`).
 //! Errors: `NoFace` when the reconstruction has no surface on an evaluation plane (it is named),
 //! `InvalidArgument` when no sample falls in the region.
 [[nodiscard]] Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& profiles,

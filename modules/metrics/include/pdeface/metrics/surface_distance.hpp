@@ -7,6 +7,7 @@
 #include "pdeface/core/point_index.hpp"
 #include "pdeface/core/result.hpp"
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -65,6 +66,10 @@ struct DistanceStats {
 struct DistanceOptions {
   double spacing = 0.5;      //!< sample spacing on each surface, in the meshes' units
   std::optional<Box> region; //!< only samples inside this box count (the face region), on both sides
+  //! Further, only samples of `a` (of `b`) for which this holds count: a region that is not a box, or
+  //! parts of a surface that should not be judged (a reconstruction's filled holes, where the scan had
+  //! nothing to compare with).
+  std::function<bool(const Vec3&)> keep_a, keep_b;
 };
 
 //! Both directions and their union (the symmetric figures report the worse of the two maxima).

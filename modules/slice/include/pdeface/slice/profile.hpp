@@ -7,6 +7,8 @@
 #include "pdeface/core/result.hpp"
 #include "pdeface/slice/intersect.hpp"
 
+#include <array>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -65,6 +67,44 @@ struct Section {
 //! The covered interval of `section` that contains `seed` (or starts nearest above it), holes up to
 //! `max_gap_mm` bridged; {seed, seed} when nothing is covered.
 [[nodiscard]] std::array<double, 2> covered_extent(const Section& section, double seed, double max_gap_mm);
+
+//! The section's surface point at height `u` along `axes.along` (interpolated between its visible points),
+//! or nullopt where the section has no surface (outside its cover).
+[[nodiscard]] std::optional<Vec3> section_at(const Section& section, const ProfileAxes& axes, double u);
+
+//! How far a walk along a section from a seed may go (`reach`).
+struct ReachOptions {
+  double limit = 0.0;       //!< the furthest coordinate along the axis the walk may reach
+  double max_hole_mm = 8.0; //!< a longer stretch without surface ends it (shorter ones are holes)
+  //! From this coordinate on (towards `limit`), the walk also ends where the surface turns away: where it
+  //! falls back (against `axes.front`) more steeply than `max_turn_deg` from the axis, over `window_mm`.
+  std::optional<double> turn_from;
+  double max_turn_deg = 70.0;
+  double window_mm = 3.0;
+};
+
+//! Why a walk ended.
+enum class ReachEnd {
+  Limit,      //!< it reached `ReachOptions::limit`
+  SurfaceEnd, //!< the surface ends (or the next surface lies beyond a hole longer than allowed)
+  TurnsAway,  //!< the surface turns away from the viewer
+};
+
+//! "limit", "surface_end", "turns_away".
+[[nodiscard]] std::string_view to_string(ReachEnd end) noexcept;
+
+struct Reach {
+  double end = 0.0; //!< the coordinate along the axis where the walk ended
+  ReachEnd why = ReachEnd::Limit;
+};
+
+//! Walks along `section` from `seed` (moved onto the nearest surface first) in the direction of
+//! `options.limit`, across holes up to `options.max_hole_mm`, and says where and why it stopped.
+[[nodiscard]] Reach reach(const Section& section, const ProfileAxes& axes, double seed,
+                          const ReachOptions& options);
+
+//! The holes of `section` inside [lo, hi]: the stretches without surface between covered ones.
+[[nodiscard]] std::vector<std::array<double, 2>> holes_within(const Section& section, double lo, double hi);
 
 //! One profile: points ascending along the axis, from exactly `lo` to exactly `hi`.
 struct Profile {

@@ -55,4 +55,16 @@ private:
 //! along the parameter.
 [[nodiscard]] Result<Spline> fit_spline(std::span<const Vec3> points, const SplineOptions& options = {});
 
+//! K samples of the ordered `points` (a polyline) whose cosine interpolant is the polyline's least-squares
+//! cosine fit. Sample k stands at the polyline's parameter `at[k]` (under `options.parameter`; ascending,
+//! from 0 to 1) and at v_k = kπ/(K − 1) of the cosine series X(v) = Σ_n α_n cos(n v), n = 0..K − 1, which
+//! is how the PDE surface runs along a curve between its samples (the DCT-I that passes through them): the
+//! series is fitted to the polyline with v following the parameter piecewise linearly through (at[k], v_k),
+//! and evaluated at the v_k. Its ends are held to the polyline's ends. The samples then lose less of the
+//! profile than samples of a spline, which the cosine interpolant would only approximate.
+//! Errors: `InvalidArgument` when the points do not advance along the parameter or `at` is not ascending
+//! from 0 to 1 with at least 4 entries.
+[[nodiscard]] Result<std::vector<Vec3>>
+cosine_samples(std::span<const Vec3> points, std::span<const double> at, const SplineOptions& options = {});
+
 } // namespace pdeface::slice
