@@ -3,6 +3,7 @@
 
 #include "pdeface/align/frame.hpp"
 #include "pdeface/compare/fidelity.hpp"
+#include "pdeface/compare/preview.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/sample_face.hpp"
 
@@ -10,6 +11,7 @@
 
 #include <Eigen/Geometry>
 
+#include <cmath>
 #include <map>
 #include <numbers>
 
@@ -170,6 +172,80 @@ TEST(Fidelity, AShortReconstructionIsMeasuredWhereItExists) {
   EXPECT_EQ(none.error().code, ErrorCode::NoFace);
   EXPECT_NE(none.error().message.find("symmetry evaluation profile"), std::string::npos)
       << none.error().message;
+}
+
+TEST(Fidelity, CoverageIsOfTheFaceTheLandmarksOutline) {
+  const Mesh canonical = align::to_canonical(face(), alignment().frame);
+  const slice::ProfileSet& p = spline().profiles;
+  // The scan covers itself, the reconstruction nearly all of it.
+  const Result<Coverage> itself = measure_coverage(canonical, p.mask, canonical);
+  ASSERT_TRUE(itself) << itself.error().message;
+  EXPECT_DOUBLE_EQ(itself->share, 1.0);
+  EXPECT_LT(itself->distance.max, 1e-9);
+  const Result<Fidelity> f = measure_fidelity(canonical, p, spline().canonical);
+  ASSERT_TRUE(f) << f.error().message;
+  EXPECT_GE(f->coverage.share, 0.97);
+  EXPECT_LT(f->coverage.distance.mean, 0.3);
+  // Half a reconstruction covers about half the face.
+  Mesh half = spline().canonical;
+  std::erase_if(half.triangles, [&](const Triangle& t) { return half.positions[t[0]].x() > 0.0; });
+  const Result<Coverage> some = measure_coverage(canonical, p.mask, half);
+  ASSERT_TRUE(some);
+  EXPECT_NEAR(some->share, 0.5, 0.05);
+  // Surface hidden behind the face (a second layer 20 mm back, like the inside of a mouth) is not the
+  // face: it changes nothing.
+  Mesh layered = canonical;
+  const auto n = static_cast<std::uint32_t>(layered.positions.size());
+  for (std::size_t i = 0; i < n; ++i)
+    layered.positions.push_back(canonical.positions[i] - Vec3(0, 0, 20));
+  for (std::size_t t = 0; t < canonical.triangles.size(); ++t)
+    layered.triangles.push_back(
+        {canonical.triangles[t][0] + n, canonical.triangles[t][1] + n, canonical.triangles[t][2] + n});
+  layered.normals.clear();
+  layered.colors.clear();
+  const Result<Coverage> behind = measure_coverage(layered, p.mask, spline().canonical);
+  ASSERT_TRUE(behind);
+  EXPECT_NEAR(behind->share, f->coverage.share, 0.005);
+  // The mask is the landmarks', not the reconstruction's: a reconstruction that stops short of the chin
+  // leaves the chin uncovered.
+  Mesh short_of = spline().canonical;
+  std::erase_if(short_of.triangles, [&](const Triangle& t) { return short_of.positions[t[0]].y() < -40.0; });
+  const Result<Coverage> chinless = measure_coverage(canonical, p.mask, short_of);
+  ASSERT_TRUE(chinless);
+  EXPECT_LT(chinless->share, 0.9);
+}
+
+TEST(Fidelity, ReconstructionToScanLeavesOutTheHolesItFilled) {
+  // A 24 mm hole in the cheek: the reconstruction spans it, the scan has nothing there to compare with.
+  Mesh holed = face();
+  std::erase_if(holed.triangles, [&](const Triangle& t) {
+    const Vec3 c = (holed.positions[t[0]] + holed.positions[t[1]] + holed.positions[t[2]]) / 3.0;
+    return std::hypot(c.x() + 30.0, c.y() + 5.0) < 12.0;
+  });
+  const Result<align::Alignment> a = align::align_scan(holed);
+  ASSERT_TRUE(a) << a.error().message;
+  const Result<Reconstruction> r = reconstruct(holed, *a);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_GE(r->profiles.holes(), 3U);
+  const Mesh canonical = align::to_canonical(holed, a->frame);
+  const Result<Fidelity> f = measure_fidelity(canonical, r->profiles, r->canonical);
+  ASSERT_TRUE(f) << f.error().message;
+  EXPECT_LT(f->surface.b_to_a.max, 3.0); // over the hole it would be up to 12 mm
+  EXPECT_LT(f->surface.b_to_a.mean, 0.3);
+  EXPECT_GE(f->coverage.share, 0.97);
+}
+
+TEST(Preview, ShowsScanReconstructionAndTurnedView) {
+  const Mesh canonical = align::to_canonical(face(), alignment().frame);
+  const std::string svg = reconstruction_preview_svg(canonical, spline().canonical, spline().profiles,
+                                                     {.title = "a <face> & more"});
+  EXPECT_TRUE(svg.starts_with("<svg"));
+  std::size_t images = 0;
+  for (std::size_t at = svg.find("<image "); at != std::string::npos; at = svg.find("<image ", at + 1))
+    ++images;
+  EXPECT_EQ(images, 3U);
+  EXPECT_NE(svg.find("a &lt;face&gt; &amp; more"), std::string::npos);
+  EXPECT_NE(svg.find("stroke-dasharray"), std::string::npos); // the face mask
 }
 
 TEST(Fidelity, TheFaceRegionIsTheCurvesRegion) {

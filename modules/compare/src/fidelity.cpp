@@ -57,12 +57,19 @@ struct FrontView {
     const auto p = slice::section_at(columns[static_cast<std::size_t>(k)], {}, y);
     return p ? std::optional<double>(p->z()) : std::nullopt;
   }
+  //! Behind the front-most surface by more than `tolerance` (the inside of the mouth, of a nostril).
+  [[nodiscard]] bool hidden(const Vec3& p, double tolerance) const {
+    const std::optional<double> front = front_z(p.x(), p.y());
+    return front && p.z() < *front - tolerance;
+  }
 };
 
-FrontView front_view(const Mesh& scan, const slice::FaceMask& mask, double step) {
-  FrontView view{-mask.half_width, step, {}};
+// Sections every millimetre over |x| <= half_width.
+FrontView front_view(const Mesh& scan, double half_width) {
+  constexpr double step = 1.0;
+  FrontView view{-half_width, step, {}};
   std::vector<double> offsets;
-  for (double x = view.x0; x <= mask.half_width + 0.5 * step; x += step)
+  for (double x = view.x0; x <= half_width + 0.5 * step; x += step)
     offsets.push_back(x);
   view.columns = slice::sections(scan, Vec3::UnitX(), offsets, {});
   return view;
@@ -78,18 +85,17 @@ FaceRegion face_region(const slice::ProfileSet& profiles, double depth_margin_mm
   return {profiles.region(), deepest - depth_margin_mm};
 }
 
-Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask, const Mesh& reconstruction,
-                                  const FidelityOptions& options) {
+namespace {
+
+Result<Coverage> coverage_of(const Mesh& scan, const slice::FaceMask& mask, const Mesh& reconstruction,
+                             const FrontView& view, const FidelityOptions& options) {
   if (scan.positions.empty() || reconstruction.positions.empty())
     return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
-  const FrontView view = front_view(scan, mask, 1.0);
   const metrics::SurfaceDistance to_reconstruction(reconstruction);
   std::vector<double> distances;
   std::size_t near = 0;
   for (const Vec3& p : metrics::sample_surface(scan, options.sample_spacing_mm)) {
-    if (!mask.contains(p)) continue;
-    const std::optional<double> front = view.front_z(p.x(), p.y());
-    if (front && p.z() < *front - options.front_tolerance_mm) continue; // hidden behind the face
+    if (!mask.contains(p) || view.hidden(p, options.front_tolerance_mm)) continue;
     const double d = to_reconstruction.distance(p);
     distances.push_back(d);
     if (d <= options.covered_within_mm) ++near;
@@ -100,6 +106,13 @@ Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask,
   c.share = static_cast<double>(near) / static_cast<double>(distances.size());
   c.distance = metrics::statistics(std::move(distances));
   return c;
+}
+
+} // namespace
+
+Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask, const Mesh& reconstruction,
+                                  const FidelityOptions& options) {
+  return coverage_of(scan, mask, reconstruction, front_view(scan, mask.half_width), options);
 }
 
 Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& profiles,
@@ -148,17 +161,21 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
                      static_cast<double>(profiles.curves.size());
   }
 
+  // The scan's side counts what a viewer sees from the front: the inside of the mouth and the nostrils,
+  // which no front-most profile holds, are not the face.
   const FaceRegion region = face_region(profiles, options.depth_margin_mm);
+  const FrontView view = front_view(scan, std::max(profiles.mask.half_width, profiles.border_mm) + 1.0);
   Result<metrics::TwoSidedDistance> distance = metrics::surface_distance(
       scan, reconstruction,
       {.spacing = options.sample_spacing_mm,
        .region = std::nullopt,
-       .keep_a = [&](const Vec3& p) { return region.contains(p); },
+       .keep_a =
+           [&](const Vec3& p) { return region.contains(p) && !view.hidden(p, options.front_tolerance_mm); },
        .keep_b =
            [&](const Vec3& p) { return region.contains(p) && !region.curves.filled_at(p.x(), p.y()); }});
   if (!distance) return std::move(distance).error();
   f.surface = *distance;
-  Result<Coverage> coverage = measure_coverage(scan, profiles.mask, reconstruction, options);
+  Result<Coverage> coverage = coverage_of(scan, profiles.mask, reconstruction, view, options);
   if (!coverage) return std::move(coverage).error();
   f.coverage = *coverage;
   return f;

@@ -36,19 +36,26 @@ struct HeightTable {
 };
 
 // Heights relative to the curve's extent (0 at its bottom, 1 at its top), so that curves of different
-// extents share the relative heights.
-HeightTable height_table(Spline spline, std::array<double, 2> extent) {
+// extents share the relative heights. The "length" counts each radian the curve turns as `turn_weight` mm:
+// samples spaced evenly in it crowd where the profile bends (the lips, the nose), not only where it is long.
+HeightTable height_table(Spline spline, std::array<double, 2> extent, double turn_weight) {
   constexpr std::size_t dense = 2048;
   const double span = std::max(extent[1] - extent[0], 1e-9);
   HeightTable table{std::move(spline), {}, {}, {}};
   Vec3 previous = table.spline.evaluate(0.0);
+  Vec3 direction = Vec3::Zero();
   for (std::size_t i = 0; i < dense; ++i) {
     const double t = static_cast<double>(i) / (dense - 1);
     const Vec3 p = table.spline.evaluate(t);
     table.t.push_back(t);
     const double y = (p.y() - extent[0]) / span;
     table.y.push_back(i == 0 ? y : std::max(table.y.back(), y));
-    table.length.push_back(i == 0 ? 0.0 : table.length.back() + (p - previous).norm());
+    const Vec3 step = p - previous;
+    double turn = 0.0;
+    if (i > 1 && step.norm() > 0 && direction.norm() > 0)
+      turn = std::acos(std::clamp(step.normalized().dot(direction), -1.0, 1.0));
+    if (step.norm() > 0) direction = step.normalized();
+    table.length.push_back(i == 0 ? 0.0 : table.length.back() + step.norm() + turn_weight * turn);
     previous = p;
   }
   return table;
@@ -609,7 +616,7 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
   } else {
     std::vector<HeightTable> tables;
     for (std::size_t j = 0; j < n; ++j)
-      tables.push_back(height_table(splines[j], set.curves[j].extent));
+      tables.push_back(height_table(splines[j], set.curves[j].extent, options.turn_weight_mm));
     const auto increments = arc_increments(tables, 1024);
     for (std::size_t j = 0; j < n; ++j) {
       std::vector<double> weights(n, 1.0);

@@ -35,8 +35,9 @@ struct Fidelity {
   //! The same measure on the planes of the curves themselves (mean over the curves): what fitting and
   //! resampling each profile to K points lost, without what lies between the curves.
   double curve_error = 0.0;
-  //! mm, within `face_region`; `a_to_b` is scan → reconstruction, `b_to_a` reconstruction → scan except
-  //! over the holes the curves filled (the scan has nothing there to compare with).
+  //! mm, within `face_region`; `a_to_b` is scan → reconstruction (the scan's front-most surface: what is
+  //! hidden behind it, the inside of the mouth and nostrils, is not the face), `b_to_a` reconstruction →
+  //! scan except over the holes the curves filled (the scan has nothing there to compare with).
   metrics::TwoSidedDistance surface;
   Coverage coverage; //!< of the face mask, which does not depend on the reconstruction's own region
 };

@@ -81,6 +81,11 @@ struct ProfileOptions {
   double min_mask_coverage = 0.5;
   double fill_step_mm = 1.0;        //!< holes are filled on a grid of this step along the curves
   double sampling_window_mm = 10.0; //!< `Sampling::LocalHeights`: the Gaussian's σ across the face
+  //! Shared and local heights: each radian a curve turns counts as this many mm of its length when the
+  //! samples are spaced, so that they crowd where profiles bend (lips, nose) as well as where they are
+  //! long. 3 mm: the smallest coverage of the shared scans' face masks at 10 % rises from 97.1 to 97.4 %
+  //! and the mean scan → reconstruction distance in them falls from 0.179 to 0.168 mm.
+  double turn_weight_mm = 3.0;
 };
 
 //! One profile curve of the layout.
