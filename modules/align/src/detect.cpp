@@ -651,6 +651,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   out.nose_prominence_mm = chosen.nose.prominence * rescale;
   Nose final_nose = chosen.nose;
   final_nose.tip = *fitted->found[Landmark::NoseTip];
+  final_nose.forward = fitted->frame.axis_in_scan(2); // looking at the face from the front
   if (const std::optional<Candidate> around = around_the_nose(scene, chosen.plane, final_nose, 1.0 / mm)) {
     out.symmetry = around->plane;
     out.symmetry_rms_mm = around->rms_mm;
