@@ -213,7 +213,9 @@ TEST(SharedFacesScale, ArbitraryUnitsGiveTheSameFace) {
     const double ratio = found->frame.scale * factor;
     EXPECT_GT(ratio, 0.85) << factor;
     EXPECT_LT(ratio, 1.15) << factor;
-    if (relative) EXPECT_NEAR(ratio, *relative, 0.01 * *relative); // both the same face
+    if (relative) {
+      EXPECT_NEAR(ratio, *relative, 0.01 * *relative); // both the same face
+    }
     relative = ratio;
     for (std::size_t i = 0; i < kLandmarkCount; ++i) {
       const Vec3 back = *found->landmarks.points[i] / factor; // mm, on the original scan
