@@ -96,6 +96,41 @@ TEST(Detect, NoFaceInShapesWithoutANose) {
   }
 }
 
+// Closed shapes with corners and rims: a box (its corners stand out like a nose tip, and it is very
+// symmetric) and a capped cylinder. Their "noses" have no eyes or mouth around them.
+TEST(Detect, NoFaceInABoxOrACylinder) {
+  Mesh box;
+  for (int i = 0; i <= 30; ++i)
+    for (int j = 0; j <= 30; ++j)
+      for (int face = 0; face < 6; ++face) {
+        const double u = -1.0 + i / 15.0, v = -1.0 + j / 15.0;
+        const Vec3 p = face == 0   ? Vec3(-1, u, v)
+                       : face == 1 ? Vec3(1, u, v)
+                       : face == 2 ? Vec3(u, -1, v)
+                       : face == 3 ? Vec3(u, 1, v)
+                       : face == 4 ? Vec3(u, v, -1)
+                                   : Vec3(u, v, 1);
+        box.positions.push_back(Vec3(120.0 * p.x(), 80.0 * p.y(), 60.0 * p.z()));
+      }
+  Mesh cylinder;
+  for (int i = 0; i < 90; ++i) {
+    const double a = 2.0 * 3.14159265358979 * i / 90.0;
+    for (int k = 0; k <= 60; ++k)
+      cylinder.positions.emplace_back(70.0 * std::cos(a), 70.0 * std::sin(a), -100.0 + 200.0 * k / 60.0);
+    for (int r = 0; r < 24; ++r)
+      for (double z : {-100.0, 100.0})
+        cylinder.positions.emplace_back(70.0 * r / 24.0 * std::cos(a), 70.0 * r / 24.0 * std::sin(a), z);
+  }
+  for (const Mesh* shape : {&box, &cylinder}) {
+    auto found = detect_landmarks(*shape);
+    ASSERT_FALSE(found.ok()) << "confidence " << found->confidence;
+    EXPECT_EQ(found.error().code, ErrorCode::NoFace);
+    // A true message: detection was given no landmarks, and every cue's value is there.
+    EXPECT_EQ(found.error().message.find("landmarks given"), std::string::npos) << found.error().message;
+    EXPECT_NE(found.error().message.find("no face found"), std::string::npos) << found.error().message;
+  }
+}
+
 TEST(Detect, NoFaceInAWholeSphere) {
   Mesh sphere;
   for (int i = 1; i < 60; ++i)

@@ -34,8 +34,7 @@ TEST_P(RealScan, IsFoundWithConfidence) {
 
 INSTANTIATE_TEST_SUITE_P(SharedFaces, RealScan,
                          ::testing::Values("facefuns_f18.ply", "facefuns_m66.ply", "facefuns_f56_points.ply",
-                                           "facefuns_m46.drc", "james.obj", "fran_cut.wrl",
-                                           "stfaces_neutral.wrl"),
+                                           "facefuns_m46.drc", "james.obj", "stfaces_neutral.wrl"),
                          test::FileParamName());
 
 TEST(RealScan, JamesAgainstHandPlacedLandmarks) {

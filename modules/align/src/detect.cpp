@@ -1,164 +1,116 @@
 #include "pdeface/align/detect.hpp"
 
-#include "depth_map.hpp"
+#include "search.hpp"
+#include "symmetry.hpp"
+
 #include "pdeface/core/point_index.hpp"
 #include "pdeface/core/topology.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
-#include <numeric>
-#include <unordered_map>
 
 namespace pdeface::align {
 namespace {
 
-constexpr double kMinNoseProminence = 8.0; // mm: a nose tip stands 15-30 mm out of its profile
+using detail::Mirror;
+using detail::mirror_of;
+using detail::mirror_rms;
+using detail::plane_of;
+using detail::refine;
+using detail::Similarity;
 
-// ---- sampling ------------------------------------------------------------------------------------------
+// Lengths below are in face millimetres: millimetres of the face at the scale being tried. `unit` (scan
+// units per face millimetre) turns them into the scan's units.
+constexpr double kMinNoseProminence = 8.0; // a nose tip stands 15-30 mm out of its profile
+constexpr double kMissing = 30.0;          // how far off a landmark not found counts
 
-// One point per occupied voxel: an even subsample whatever the scan's density.
-std::vector<Vec3> voxel_subsample(std::span<const Vec3> points, double cell) {
-  std::unordered_map<std::uint64_t, std::size_t> seen;
-  std::vector<Vec3> out;
-  for (const Vec3& p : points) {
-    const Eigen::Vector3d k = (p / cell).array().floor();
-    const auto key = (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.x()) & 0x1FFFFF) << 42U) |
-                     (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.y()) & 0x1FFFFF) << 21U) |
-                     (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.z()) & 0x1FFFFF));
-    if (seen.emplace(key, out.size()).second) out.push_back(p);
-  }
-  return out;
-}
+double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 
-// Every `step`-th point, at most `count` of them.
-std::vector<Vec3> thin(std::span<const Vec3> points, std::size_t count) {
-  const std::size_t step = std::max<std::size_t>(1, points.size() / std::max<std::size_t>(count, 1));
-  std::vector<Vec3> out;
-  for (std::size_t i = 0; i < points.size(); i += step)
-    out.push_back(points[i]);
-  return out;
-}
+// ---- the scan ------------------------------------------------------------------------------------------
 
-double median_spacing(std::span<const Vec3> points, const PointIndex& index) {
-  std::vector<double> d;
-  for (const Vec3& p : thin(points, 400))
-    d.push_back(index.nearest(p, 2).back().distance);
-  std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2));
-  return d[d.size() / 2];
-}
-
-// ---- symmetry ------------------------------------------------------------------------------------------
-
-// The mirror map x -> a x + b (a is orthogonal with det -1).
-struct Mirror {
-  Eigen::Matrix3d a;
-  Vec3 b;
-  [[nodiscard]] Vec3 operator()(const Vec3& p) const { return a * p + b; }
+// The scan prepared for the search, in its own units: loose fragments gone, with its k-d tree and a
+// subsample for the symmetry search whose spacing follows the scan's size (so the search does not
+// depend on the units).
+struct Scene {
+  Mesh mesh;
+  std::optional<PointIndex> index;
+  double spacing = 0.0;     // median distance between neighbouring points
+  double size = 0.0;        // bounding-box diagonal
+  std::vector<Vec3> sample; // one point per voxel of size / 100
+  std::optional<PointIndex> coarse;
+  std::vector<Vec3> probe;      // 300 of the sample, to score candidate planes
+  std::vector<Vec3> fit_points; // 1000 of the sample, to refine them
+  detail::Loops loops;          // the mesh's boundaries: eyes and mouths may be holes
 };
 
-Mirror mirror_of(const Plane& plane) {
-  return {Eigen::Matrix3d::Identity() - 2.0 * plane.normal * plane.normal.transpose(),
-          2.0 * plane.offset * plane.normal};
+Scene prepare(const Mesh& scan, const DetectOptions& options) {
+  Scene s;
+  s.mesh = drop_small_components(scan, options.min_fragment);
+  s.mesh.normals.clear();
+  s.index.emplace(s.mesh.positions);
+  s.spacing = detail::median_spacing(s.mesh.positions, *s.index);
+  s.size = bounding_box(s.mesh).diagonal();
+  s.sample = detail::voxel_subsample(s.mesh.positions, std::max(s.size / 100.0, s.spacing));
+  s.coarse.emplace(s.sample);
+  s.probe = detail::thin(s.sample, 300);
+  s.fit_points = detail::thin(s.sample, 1000);
+  s.loops = detail::boundary_loops(s.mesh.triangles);
+  return s;
 }
 
-// The symmetry plane of an improper isometry: the normal is the eigenvector of its symmetric part with
-// eigenvalue nearest -1; the plane passes through the midpoints of the points and their images.
-Plane plane_of(const Mirror& m, std::span<const Vec3> points) {
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(0.5 * (m.a + m.a.transpose()));
-  const Vec3 n = eig.eigenvectors().col(0).normalized();
-  double offset = 0.0;
-  for (const Vec3& p : points)
-    offset += n.dot(0.5 * (p + m(p)));
-  return {n, offset / static_cast<double>(points.size())};
+// The scan's points within `radius` of `centre`, one per voxel of `cell`.
+std::vector<Vec3> patch(const Scene& s, const Vec3& centre, double radius, double cell) {
+  std::vector<Vec3> near;
+  for (const auto& n : s.index->within(centre, radius))
+    near.push_back(s.mesh.positions[n.index]);
+  return detail::voxel_subsample(near, cell);
 }
 
-// Trimmed RMS distance from the mirrored points to the scan: the best `keep` fraction counts, so that
-// an asymmetric cut, hair or a missing ear do not hide a good plane.
-double mirror_rms(const Mirror& m, std::span<const Vec3> points, const PointIndex& index, double keep = 0.7) {
-  std::vector<double> d;
-  d.reserve(points.size());
-  for (const Vec3& p : points)
-    d.push_back(index.nearest(m(p)).distance);
-  const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(keep * static_cast<double>(d.size())));
-  std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(n - 1));
-  double sum = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-    sum += d[i] * d[i];
-  return std::sqrt(sum / static_cast<double>(n));
-}
-
-// Registration of the mirrored scan onto the scan (trimmed ICP, rigid fits by Eigen::umeyama).
-Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all, const PointIndex& index,
-              double keep = 0.7, int iterations = 30) {
-  const auto n = points.size();
-  Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(n)), dst(3, static_cast<Eigen::Index>(n));
-  std::vector<std::pair<double, std::size_t>> order(n);
-  for (int iteration = 0; iteration < iterations; ++iteration) {
-    std::vector<Vec3> moved(n), target(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      moved[i] = m(points[i]);
-      const auto nn = index.nearest(moved[i]);
-      target[i] = all[nn.index];
-      order[i] = {nn.distance, i};
-    }
-    const std::size_t kept =
-        std::max<std::size_t>(3, static_cast<std::size_t>(keep * static_cast<double>(n)));
-    std::ranges::nth_element(order, order.begin() + static_cast<std::ptrdiff_t>(kept - 1));
-    for (std::size_t j = 0; j < kept; ++j) {
-      src.col(static_cast<Eigen::Index>(j)) = moved[order[j].second];
-      dst.col(static_cast<Eigen::Index>(j)) = target[order[j].second];
-    }
-    const auto k = static_cast<Eigen::Index>(kept);
-    const Eigen::Matrix4d t = Eigen::umeyama(src.leftCols(k), dst.leftCols(k), false);
-    const Eigen::Matrix3d r = t.topLeftCorner<3, 3>();
-    m = {r * m.a, r * m.b + t.topRightCorner<3, 1>()};
-    if (Eigen::AngleAxisd(r).angle() < 1e-4 && t.topRightCorner<3, 1>().norm() < 1e-3) break; // 0.006°, 1 µm
-  }
-  return m;
-}
-
-// Unit vectors spread evenly over the hemisphere z >= 0 (a Fibonacci spiral).
-std::vector<Vec3> hemisphere(int count) {
-  std::vector<Vec3> out;
-  const double golden = std::numbers::pi * (3.0 - std::sqrt(5.0));
-  for (int i = 0; i < count; ++i) {
-    const double z = 1.0 - (i + 0.5) / count;
-    const double r = std::sqrt(1.0 - z * z);
-    out.emplace_back(r * std::cos(golden * i), r * std::sin(golden * i), z);
-  }
-  return out;
-}
-
-// ---- the nose on the symmetry profile ------------------------------------------------------------------
+// ---- the nose on a symmetry profile --------------------------------------------------------------------
 
 struct Nose {
   Vec3 tip;
-  Vec3 forward; // out of the face
-  Vec3 up;      // towards the forehead
-  double prominence = 0.0;
+  Vec3 forward;            // out of the face
+  Vec3 up;                 // towards the forehead
+  double prominence = 0.0; // face mm
 };
 
-// The symmetry profile is the scan near the plane. Looking along every direction in the plane, the
-// extreme point is a nose tip when the profile falls away steeply on both sides of it (15 mm on, the
-// dorsum is a few mm back and the upper lip 15-20 mm back), yet smoothly (a spike of hair falls away as
-// fast 5 mm on). The dorsum side is up.
-std::optional<Nose> find_nose(const Plane& plane, std::span<const Vec3> points, double slab) {
-  std::vector<Vec3> profile;
-  for (const Vec3& p : points)
-    if (std::abs(plane.normal.dot(p) - plane.offset) <= slab) profile.push_back(p);
-  if (profile.size() < 20) return std::nullopt;
+// The scan's points within `slab` of the plane (and within `reach` of `near` when given).
+std::vector<Vec3> profile_of(const Scene& s, const Plane& plane, double slab, const Vec3* near = nullptr,
+                             double reach = 0.0) {
+  std::vector<Vec3> out;
+  const auto take = [&](const Vec3& p) {
+    if (std::abs(plane.normal.dot(p) - plane.offset) <= slab) out.push_back(p);
+  };
+  if (near)
+    for (const auto& n : s.index->within(*near, reach))
+      take(s.mesh.positions[n.index]);
+  else
+    for (const Vec3& p : s.mesh.positions)
+      take(p);
+  return out;
+}
+
+// Looking along every direction in the plane, the extreme point of the profile is a nose tip when the
+// profile falls away steeply on both sides of it (15 mm on, the dorsum is a few mm back and the upper
+// lip 15-20 mm back), yet smoothly (a spike of hair falls away as fast 5 mm on). The dorsum side is up.
+// Every such point, the most prominent per place (15 mm apart), most prominent first, at most `most`;
+// with `towards`, only looking within 40° of it.
+std::vector<Nose> find_noses(const Plane& plane, std::span<const Vec3> profile, double unit, std::size_t most,
+                             const Vec3* towards = nullptr) {
+  std::vector<Nose> found;
+  if (profile.size() < 20) return found;
   const Vec3 b1 = plane.normal.unitOrthogonal();
   const Vec3 b2 = plane.normal.cross(b1);
-
-  std::optional<Nose> best;
   for (int step = 0; step < 180; ++step) {
     const double theta = 2.0 * std::numbers::pi * step / 180.0;
     const Vec3 d = std::cos(theta) * b1 + std::sin(theta) * b2;
+    if (towards && d.dot(*towards) < std::cos(0.7)) continue; // only about the way given
     const Vec3 lateral = plane.normal.cross(d);
     const Vec3& tip = *std::ranges::max_element(profile, {}, [&](const Vec3& p) { return d.dot(p); });
     // How far the profile falls back from the tip at lateral offsets in [lo, hi] on one side: the
@@ -167,8 +119,8 @@ std::optional<Nose> find_nose(const Plane& plane, std::span<const Vec3> points, 
     auto nearest_depth = [&](double lo, double hi, double side) {
       double drop = std::numeric_limits<double>::infinity();
       for (const Vec3& q : profile) {
-        const double l = side * lateral.dot(q - tip);
-        const double behind = d.dot(tip - q);
+        const double l = side * lateral.dot(q - tip) / unit;
+        const double behind = d.dot(tip - q) / unit;
         if (l >= lo && l <= hi && behind <= 30.0) drop = std::min(drop, behind);
       }
       return drop;
@@ -177,271 +129,40 @@ std::optional<Nose> find_nose(const Plane& plane, std::span<const Vec3> points, 
     const double near_plus = nearest_depth(3.0, 7.0, 1.0), near_minus = nearest_depth(3.0, 7.0, -1.0);
     if (!std::isfinite(far_plus + far_minus + near_plus + near_minus)) continue; // an end of the profile
     if (near_plus + near_minus > 0.6 * (far_plus + far_minus) + 1.0) continue;   // a spike, not a nose
-    const double prominence = far_plus + far_minus;
-    if (!best || prominence > best->prominence)
-      best = Nose{tip, d, far_plus < far_minus ? lateral : Vec3(-lateral), prominence};
+    const Nose nose{tip, d, far_plus < far_minus ? lateral : Vec3(-lateral), far_plus + far_minus};
+    const auto same =
+        std::ranges::find_if(found, [&](const Nose& n) { return (n.tip - tip).norm() < 15.0 * unit; });
+    if (same == found.end())
+      found.push_back(nose);
+    else if (nose.prominence > same->prominence)
+      *same = nose;
   }
-  return best;
-}
-
-// ---- landmarks in the depth map -------------------------------------------------------------------------
-
-// The grid's best point (x, y) of a score, moved to the vertex of the parabola through it and its two
-// neighbours along each axis: landmarks then move continuously with the frame instead of by whole cells.
-Eigen::Vector2d refined_peak(const auto& score, Eigen::Vector2d at, double h) {
-  const std::optional<double> centre = score(at.x(), at.y());
-  if (!centre) return at;
-  Eigen::Vector2d shift = Eigen::Vector2d::Zero();
-  for (int axis = 0; axis < 2; ++axis) {
-    const Eigen::Vector2d d = axis == 0 ? Eigen::Vector2d(h, 0) : Eigen::Vector2d(0, h);
-    const std::optional<double> minus = score(at.x() - d.x(), at.y() - d.y());
-    const std::optional<double> plus = score(at.x() + d.x(), at.y() + d.y());
-    if (!minus || !plus) continue;
-    const double curvature = *minus - 2.0 * *centre + *plus;
-    if (curvature < 0.0) shift[axis] = std::clamp(0.5 * (*minus - *plus) / curvature, -0.5, 0.5) * h;
-  }
-  return at + shift;
-}
-
-// The lateral end of a horizontal hollow (the mouth line, the fissure of an eye): walking from x_from
-// towards x_to, the columns whose most hollow point (over [y0, y1]) is at least `fraction` as deep as
-// the deepest column's; the end is the last of them reached without a gap.
-std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_from, double x_to, double y0,
-                                          double y1, double r, double fraction = 0.35) {
-  const double step = x_to > x_from ? map.cell() : -map.cell();
-  std::vector<std::pair<double, Eigen::Vector2d>> columns; // (most hollow relief, where)
-  for (double x = x_from; (x_to - x) * step >= 0.0; x += step) {
-    std::pair<double, Eigen::Vector2d> best{std::numeric_limits<double>::infinity(), {x, 0.0}};
-    for (double y = y0; y <= y1; y += map.cell())
-      if (const auto rel = map.relief(x, y, r); rel && *rel < best.first)
-        best = {*rel, Eigen::Vector2d(x, y)};
-    columns.push_back(best);
-  }
-  const auto deepest = std::ranges::min_element(columns, {}, &std::pair<double, Eigen::Vector2d>::first);
-  if (deepest == columns.end() || !(deepest->first < 0.0)) return std::nullopt;
-  auto end = deepest;
-  for (auto it = deepest; it != columns.end() && it->first <= fraction * deepest->first; ++it)
-    end = it;
-  // Between the last column in the hollow and the next one out, where the relief crosses the threshold.
-  Eigen::Vector2d where = end->second;
-  if (const auto next = end + 1; next != columns.end() && next->first > end->first) {
-    const double t =
-        std::clamp((fraction * deepest->first - end->first) / (next->first - end->first), 0.0, 1.0);
-    where = end->second + t * (next->second - end->second);
-  }
-  const auto hollowness = [&](double x, double y) -> std::optional<double> {
-    const auto rel = map.relief(x, y, r);
-    return rel ? std::optional<double>(-*rel) : std::nullopt;
-  };
-  return Eigen::Vector2d(where.x(), refined_peak(hollowness, where, map.cell()).y());
-}
-
-// The most cup-shaped point of a window, as (x, y) in the frame.
-std::optional<Eigen::Vector2d> most_cupped(const detail::DepthMap& map, double x0, double x1, double y0,
-                                           double y1) {
-  std::optional<Eigen::Vector2d> best;
-  double top = 0.0; // only cups count
-  for (double y = y0; y <= y1; y += map.cell())
-    for (double x = std::min(x0, x1); x <= std::max(x0, x1); x += map.cell())
-      if (const auto k = map.cupness(x, y); k && *k > top) {
-        top = *k;
-        best = Eigen::Vector2d(x, y);
-      }
-  if (!best) return best;
-  return refined_peak([&](double x, double y) { return map.cupness(x, y); }, *best, map.cell());
-}
-
-// A rigid map into a face frame (mm): q = rotation · p + translation.
-struct Rigid {
-  Eigen::Matrix3d rotation;
-  Vec3 translation;
-};
-
-// Landmarks (in mm, the scan's frame) found in a depth map of the scan seen in `frame`, whose origin is
-// near the nose tip and whose axes are near the canonical ones: the nose tip as the front-most point
-// near the origin, eye and mouth corners as the hollows of the windows where faces have them, the face's
-// bottom where the midline turns under the chin, its top by the rule of thirds (within the scan).
-Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangle> triangles, double spacing,
-                           const Rigid& frame) {
-  std::vector<Vec3> local(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    local[i] = frame.rotation * points[i] + frame.translation;
-  detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
-  map.rasterise(local, triangles, std::max(1.5, 1.5 * spacing));
-  map.fill_holes(4);
-
-  std::optional<Eigen::Vector3d> tip; // (x, y, z) in the frame
-  for (double y = -15.0; y <= 15.0; y += 1.0)
-    for (double x = -10.0; x <= 10.0; x += 1.0)
-      if (const auto z = map.at(x, y); z && (!tip || *z > tip->z())) tip = Eigen::Vector3d(x, y, *z);
-  if (tip) {
-    const Eigen::Vector2d xy =
-        refined_peak([&](double x, double y) { return map.at(x, y); }, tip->head<2>(), 1.0);
-    tip = Eigen::Vector3d(xy.x(), xy.y(), map.at(xy.x(), xy.y()).value_or(tip->z()));
-  }
-
-  Landmarks found;
-  auto place = [&](Landmark l, double x, double y) {
-    if (const auto z = map.at(x, y))
-      found[l] = Vec3(frame.rotation.transpose() * (Vec3(x, y, *z) - frame.translation));
-  };
-  if (!tip) return found;
-  place(Landmark::NoseTip, tip->x(), tip->y());
-  const double x0 = tip->x(), y0 = tip->y();
-  const detail::DepthMap cups = map.smoothed(2.5);
-  const detail::DepthMap soft = map.smoothed(1.0); // point clouds splat unevenly: their raw map is rough
-  std::vector<double> eye_y, mouth_y;
-  // The mouth line where it crosses the midline. Down the midline from the nose the profile rises onto
-  // the upper lip, dips into the mouth, rises onto the lower lip, dips under it and rises onto the chin:
-  // the mouth is the lowest point between the first two bumps (the lips). Failing that, the deepest
-  // groove (relief) between the nose and the chin.
-  const detail::DepthMap profile_map = map.smoothed(1.5);
-  std::vector<std::pair<double, double>> midline; // (y, z), downwards
-  for (double y = y0 - 6.0; y >= y0 - 60.0; y -= 1.0)
-    if (const auto z = profile_map.at(x0, y)) midline.emplace_back(y, *z);
-  std::vector<std::size_t> bumps;
-  for (std::size_t i = 2; i + 2 < midline.size() && bumps.size() < 2; ++i) {
-    const double z = midline[i].second;
-    if (z >= midline[i - 1].second && z >= midline[i + 1].second && z > midline[i - 2].second &&
-        z > midline[i + 2].second)
-      bumps.push_back(i);
-  }
-  double y_slit = y0 - 30.0;
-  if (bumps.size() == 2) {
-    const auto lowest = std::min_element(midline.begin() + static_cast<std::ptrdiff_t>(bumps[0]),
-                                         midline.begin() + static_cast<std::ptrdiff_t>(bumps[1]),
-                                         [](const auto& a, const auto& b) { return a.second < b.second; });
-    y_slit = lowest->first;
-  } else {
-    double deepest = 0.0;
-    for (double y = y0 - 18.0; y >= y0 - 45.0; y -= 1.0)
-      if (const auto rel = soft.relief(x0, y, 4.0); rel && *rel < deepest) {
-        deepest = *rel;
-        y_slit = y;
-      }
-  }
-  for (double side : {1.0, -1.0}) {
-    const bool left = side > 0;
-    // Eye corners are cups (concave in every direction) on a lightly smoothed map: the inner one between
-    // the nose bridge and the eyeball, the outer one 18-40 mm further out at about the same height.
-    if (const auto inner = most_cupped(cups, x0 + side * 6.0, x0 + side * 30.0, y0 + 15.0, y0 + 55.0)) {
-      place(left ? Landmark::EyeInnerLeft : Landmark::EyeInnerRight, inner->x(), inner->y());
-      eye_y.push_back(inner->y());
-      if (const auto outer = most_cupped(cups, inner->x() + side * 18.0, inner->x() + side * 40.0,
-                                         inner->y() - 10.0, inner->y() + 8.0))
-        place(left ? Landmark::EyeOuterLeft : Landmark::EyeOuterRight, outer->x(), outer->y());
-    }
-    if (const auto mouth = hollow_end(soft, x0, x0 + side * 40.0, y_slit - 8.0, y_slit + 6.0, 5.0)) {
-      place(left ? Landmark::MouthLeft : Landmark::MouthRight, mouth->x(), mouth->y());
-      mouth_y.push_back(mouth->y());
-    }
-  }
-  // A corner the surface shows on one side only (a shadowed or cut outer corner): mirror the other.
-  for (Landmark l : {Landmark::EyeOuterLeft, Landmark::EyeOuterRight, Landmark::EyeInnerLeft,
-                     Landmark::EyeInnerRight, Landmark::MouthLeft, Landmark::MouthRight}) {
-    const std::optional<Vec3>& other = found[mirrored(l)];
-    if (found.has(l) || !other) continue;
-    const Vec3 seen = frame.rotation * *other + frame.translation;
-    place(l, 2.0 * x0 - seen.x(), seen.y());
-  }
-  auto mean = [](const std::vector<double>& v, double fallback) {
-    return v.empty() ? fallback : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
-  };
-  const double y_eyes = mean(eye_y, y0 + 38.0);
-  const double y_mouth = mean(mouth_y, y0 - 35.0);
-
-  // The chin's most forward point on the midline below the mouth, then down while the profile stays
-  // within 15 mm of it (below that, it turns under the chin towards the neck).
-  std::optional<Eigen::Vector2d> chin; // (y, z)
-  for (double y = y_mouth - 12.0; y >= y_mouth - 55.0; y -= 1.0)
-    if (const auto z = map.at(x0, y); z && (!chin || *z > chin->y())) chin = Eigen::Vector2d(y, *z);
-  if (!chin) return found;
-  double y_bottom = chin->x();
-  while (y_bottom > -140.0) {
-    const auto z = map.at(x0, y_bottom - 1.0);
-    if (!z || *z < chin->y() - 15.0) break;
-    y_bottom -= 1.0;
-  }
-  place(Landmark::FaceBottom, x0, y_bottom);
-  // Rule of thirds: hairline to nasion ~ half of nasion to chin; the nasion is a few mm above the eyes.
-  const double y_nasion = y_eyes + 4.0;
-  const double y_top = y_nasion + 0.5 * (y_nasion - y_bottom);
-  double y_scan = y_nasion;
-  while (y_scan < y_top && map.at(x0, y_scan + 1.0))
-    y_scan += 1.0;
-  place(Landmark::FaceTop, x0, y_scan);
+  std::ranges::sort(found, std::greater{}, &Nose::prominence);
+  if (found.size() > most) found.resize(most);
   return found;
 }
 
-// RMS distance of the landmarks, mapped by the frame, from the average face's; a landmark not found
-// counts as 30 mm off (else finding fewer would look like fitting better).
-double fit_rms(const Landmarks& landmarks, const FaceFrame& frame) {
-  constexpr double kMissing = 30.0;
-  double sum = 0.0;
-  const Landmarks canonical = to_canonical(landmarks, frame);
-  for (std::size_t i = 0; i < kLandmarkCount; ++i)
-    sum += canonical.points[i] ? (*canonical.points[i] - *canonical_template().points[i]).squaredNorm()
-                               : kMissing * kMissing;
-  return std::sqrt(sum / kLandmarkCount);
-}
+// ---- candidates: a symmetry plane and a nose on it -----------------------------------------------------
 
-double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
-
-} // namespace
-
-Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const FaceFrame& frame) {
-  if (given.count() == kLandmarkCount || scan.vertex_count() == 0) return given;
-  std::vector<Vec3> points(scan.positions.size());
-  for (std::size_t i = 0; i < points.size(); ++i)
-    points[i] = frame.scale * scan.positions[i];
-  const PointIndex index(points);
-  const Landmarks found = search_landmarks(points, scan.triangles, median_spacing(points, index),
-                                           Rigid{frame.rotation, frame.translation});
-  Landmarks out = given;
-  for (std::size_t i = 0; i < kLandmarkCount; ++i)
-    if (!out.points[i] && found.points[i]) out.points[i] = *found.points[i] / frame.scale;
-  return out;
-}
-
-namespace {
-
-// The scan prepared for the search: in millimetres, loose fragments gone, with its k-d trees.
-struct Scene {
-  Mesh mesh; // mm
-  std::optional<PointIndex> index;
-  double spacing = 0.0;     // median distance between neighbouring points
-  std::vector<Vec3> sample; // one point per voxel of DetectOptions::sample_mm
-  std::optional<PointIndex> coarse;
-  std::vector<Vec3> probe;      // 300 of the sample, to score candidate planes
-  std::vector<Vec3> fit_points; // 1000 of the sample, to refine them
+struct Candidate {
+  Plane plane;
+  Nose nose;
+  double rms_mm = 0.0; // mirror RMS of the central face (face mm)
 };
 
-Scene prepare(const Mesh& scan, double mm, const DetectOptions& options) {
-  Scene s;
-  s.mesh = drop_small_components(scan, options.min_fragment);
-  for (Vec3& p : s.mesh.positions)
-    p *= mm;
-  s.index.emplace(s.mesh.positions);
-  s.spacing = median_spacing(s.mesh.positions, *s.index);
-  s.sample = voxel_subsample(s.mesh.positions, std::max(options.sample_mm, s.spacing));
-  s.coarse.emplace(s.sample);
-  s.probe = thin(s.sample, 300);
-  s.fit_points = thin(s.sample, 1000);
-  return s;
-}
-
-// Symmetry plane candidates through the centroid in every direction, scored on the probe against the
-// subsample (nearest-neighbour queries dominate the cost); the best 16 distinct directions get a few
-// registration steps (a plane through the centroid may be offset from the face's, e.g. on a scan cut
-// asymmetrically); the best 4 of those are the seeds.
-std::vector<Plane> symmetry_seeds(const Scene& s, int directions) {
+// Symmetry planes of the whole scan: candidate planes through the centroid in every direction, scored
+// on the probe against the subsample; the best 16 distinct directions get a few registration steps (a
+// plane through the centroid may be offset from the face's), the best `count` of those are registered
+// fully. These find the face's plane when the face is most of the scan.
+std::vector<Plane> global_planes(const Scene& s, int directions, std::size_t count) {
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& p : s.sample)
     centroid += p;
   centroid /= static_cast<double>(s.sample.size());
+  const double still = 1e-5 * s.size;
 
   std::vector<std::pair<double, Vec3>> scored;
-  for (const Vec3& n : hemisphere(directions))
+  for (const Vec3& n : detail::fibonacci_directions(directions))
     scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), s.probe, *s.coarse), n);
   std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
 
@@ -452,99 +173,336 @@ std::vector<Plane> symmetry_seeds(const Scene& s, int directions) {
     if (tried.size() == 16) break;
     if (std::ranges::any_of(tried, [&](const Vec3& t) { return std::abs(t.dot(n)) > distinct; })) continue;
     tried.push_back(n);
-    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), s.probe, s.sample, *s.coarse, 0.7, 6);
+    const Mirror m = refine(mirror_of({n, n.dot(centroid)}), s.probe, s.sample, *s.coarse, 0.7, 6, still);
     const Plane plane = plane_of(m, s.probe);
     rough.emplace_back(mirror_rms(mirror_of(plane), s.probe, *s.coarse), plane);
   }
   std::ranges::sort(rough, {}, &std::pair<double, Plane>::first);
-  std::vector<Plane> seeds;
-  for (const auto& [rms, plane] : rough) {
-    if (seeds.size() == 4) break;
-    if (std::ranges::none_of(seeds,
-                             [&](const Plane& q) { return std::abs(q.normal.dot(plane.normal)) > distinct; }))
-      seeds.push_back(plane);
+  std::vector<Plane> planes;
+  for (const auto& [rms, seed] : rough) {
+    if (planes.size() == count) break;
+    if (std::ranges::any_of(planes,
+                            [&](const Plane& q) { return std::abs(q.normal.dot(seed.normal)) > distinct; }))
+      continue;
+    planes.push_back(
+        plane_of(refine(mirror_of(seed), s.fit_points, s.sample, *s.coarse, 0.7, 30, still), s.fit_points));
   }
-  return seeds;
+  return planes;
 }
 
-struct Candidate {
-  Plane plane;
-  double rms; // mirror RMS around the nose
-  Nose nose;
+// Places that could be a nose tip whatever the scan's pose and scale: the points of the subsample that
+// are the extreme point of the scan in some direction (a nose tip is on the scan's convex hull), with
+// the directions in which they are.
+struct Extreme {
+  Vec3 point;
+  Vec3 direction; // mean of the directions it is extreme in
+  int votes = 0;
 };
 
-// The scan's outline need not be symmetric (a cut, hair, an ear missing), and a face is close to a
-// cylinder, whose symmetry planes are many: a plane is judged on the central face only, 70 mm around its
-// nose, where a face is most symmetric and a scan most complete, keeping nearly every pair so that the
-// nose and the eyes (which show the plane's yaw) count.
-std::optional<Candidate> around_the_nose(const Scene& s, const Candidate& c, double slab) {
-  std::vector<Vec3> central;
-  for (const Vec3& p : s.sample)
-    if ((p - c.nose.tip).norm() < 70.0) central.push_back(p);
+std::vector<Extreme> extreme_points(const Scene& s, int directions) {
+  std::vector<Extreme> out;
+  std::vector<int> slot(s.sample.size(), -1);
+  for (const Vec3& d : detail::fibonacci_directions(directions, true)) {
+    std::size_t best = 0;
+    double top = -std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < s.sample.size(); ++i)
+      if (const double h = d.dot(s.sample[i]); h > top) {
+        top = h;
+        best = i;
+      }
+    if (slot[best] < 0) {
+      slot[best] = static_cast<int>(out.size());
+      out.push_back({s.sample[best], Vec3::Zero(), 0});
+    }
+    Extreme& e = out[static_cast<std::size_t>(slot[best])];
+    e.direction += d;
+    ++e.votes;
+  }
+  return out;
+}
+
+// The extreme points grouped into places 15 mm across (greedily, most votes first), the `most` with the
+// most votes (the widest cones of directions: pointed features).
+std::vector<Extreme> extreme_places(std::vector<Extreme> points, double unit, std::size_t most) {
+  std::ranges::sort(points, std::greater{}, &Extreme::votes);
+  std::vector<Extreme> places;
+  std::vector<bool> used(points.size(), false);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    if (used[i]) continue;
+    Extreme place = points[i];
+    for (std::size_t j = i + 1; j < points.size(); ++j)
+      if (!used[j] && (points[j].point - points[i].point).norm() < 15.0 * unit) {
+        used[j] = true;
+        place.direction += points[j].direction;
+        place.votes += points[j].votes;
+      }
+    place.direction.normalize();
+    places.push_back(place);
+  }
+  std::ranges::stable_sort(places, std::greater{}, &Extreme::votes);
+  if (places.size() > most) places.resize(most);
+  return places;
+}
+
+// How far, on average, the scan falls back behind `tip` (along `d`) 10-20 mm to its sides: a nose
+// falls 10-20 mm, a gentle bump (a cheek, the crown of a head) a few. 0 when the surface does not go
+// all round (the rim of an open scan is extreme in many directions too).
+double fall_around(const Scene& s, const Vec3& tip, const Vec3& d, double unit) {
+  const Vec3 e1 = d.unitOrthogonal(), e2 = d.cross(e1);
+  std::array<bool, 8> sectors{};
+  double sum = 0.0;
+  int n = 0;
+  for (const auto& nb : s.index->within(tip, 25.0 * unit)) {
+    const Vec3 v = s.mesh.positions[nb.index] - tip;
+    const double behind = -d.dot(v);
+    const Vec3 across = v + behind * d;
+    const double side = across.norm();
+    if (side < 10.0 * unit || side > 20.0 * unit) continue;
+    const double angle = std::atan2(e2.dot(across), e1.dot(across)) + std::numbers::pi;
+    sectors[static_cast<std::size_t>(std::min(7.0, angle / (2.0 * std::numbers::pi) * 8.0))] = true;
+    sum += std::min(behind, 25.0 * unit);
+    ++n;
+  }
+  if (n == 0 || !std::ranges::all_of(sectors, [](bool b) { return b; })) return 0.0;
+  return sum / n / unit;
+}
+
+// The symmetry plane of the scan around an extreme point: planes through it that contain its direction,
+// every 10°, scored by how well the central face (70 mm around) matches its mirror image; the best two
+// registered.
+std::optional<Plane> local_plane(const Scene& s, const Vec3& tip, const Vec3& d, double unit) {
+  const std::vector<Vec3> around = patch(s, tip, 70.0 * unit, 3.0 * unit);
+  if (around.size() < 50) return std::nullopt;
+  const std::vector<Vec3> probe = detail::thin(around, 200);
+  const std::vector<Vec3> fit = detail::thin(around, 600);
+  const Vec3 e1 = d.unitOrthogonal(), e2 = d.cross(e1);
+  std::vector<std::pair<double, Vec3>> scored;
+  for (int k = 0; k < 18; ++k) {
+    const double phi = std::numbers::pi * k / 18.0;
+    const Vec3 n = std::cos(phi) * e1 + std::sin(phi) * e2;
+    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(tip)}), probe, *s.index), n);
+  }
+  std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
+  std::optional<std::pair<double, Plane>> best;
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Vec3& n = scored[k].second;
+    const Mirror m =
+        refine(mirror_of({n, n.dot(tip)}), fit, s.mesh.positions, *s.index, 0.8, 20, 1e-3 * unit);
+    const Plane plane = plane_of(m, fit);
+    const double rms = mirror_rms(mirror_of(plane), probe, *s.index);
+    if (!best || rms < best->first) best = {rms, plane};
+  }
+  return best->second;
+}
+
+// The scan's outline need not be symmetric (a cut, hair, an ear missing, shoulders turned away from the
+// head), and a face is close to a cylinder, whose symmetry planes are many: a plane is judged on the
+// central face only, 70 mm around its nose, where a face is most symmetric and a scan most complete,
+// keeping nearly every pair so that the nose and the eyes (which show the plane's yaw) count. The nose
+// is then looked for again on the refined plane, near where it was.
+// Quickly (`points` of the central face, `iterations` steps) or thoroughly (every voxel, 30 steps).
+std::optional<Candidate> around_the_nose(const Scene& s, const Plane& plane, const Nose& seed, double unit,
+                                         std::size_t points = 0, int iterations = 30) {
+  const Vec3& tip = seed.tip;
+  std::vector<Vec3> central = patch(s, tip, 70.0 * unit, 3.0 * unit);
   if (central.size() < 50) return std::nullopt;
-  const Mirror m = refine(mirror_of(c.plane), central, s.mesh.positions, *s.index, 0.95);
-  const Plane plane = plane_of(m, central);
-  const std::optional<Nose> nose = find_nose(plane, s.mesh.positions, slab);
-  if (!nose || nose->prominence < kMinNoseProminence) return std::nullopt;
-  return Candidate{plane, mirror_rms(mirror_of(plane), central, *s.index), *nose};
-}
-
-// Each seed refined, its nose found, judged around its nose; the plane most symmetric there wins (a
-// wrong plane through a face can show a bigger "nose": the chin, or the nose seen askew, but not a
-// symmetric face around it). Also reports the most prominent "nose" seen, for the error message.
-std::optional<Candidate> choose_plane(const Scene& s, std::span<const Plane> seeds, double& best_prominence) {
-  const double slab = std::max(1.0, 0.6 * s.spacing);
-  std::optional<Candidate> chosen;
-  for (const Plane& seed : seeds) {
-    const Plane plane = plane_of(refine(mirror_of(seed), s.fit_points, s.sample, *s.coarse), s.fit_points);
-    const std::optional<Nose> nose = find_nose(plane, s.mesh.positions, slab);
-    if (!nose) continue;
-    best_prominence = std::max(best_prominence, nose->prominence);
-    if (nose->prominence < kMinNoseProminence) continue;
-    const std::optional<Candidate> refined =
-        around_the_nose(s, {plane, mirror_rms(mirror_of(plane), s.fit_points, *s.coarse), *nose}, slab);
-    if (refined && (!chosen || refined->rms < chosen->rms)) chosen = refined;
+  if (points > 0) central = detail::thin(central, points);
+  const Mirror m =
+      refine(mirror_of(plane), central, s.mesh.positions, *s.index, 0.95, iterations, 1e-3 * unit);
+  const Plane refined = plane_of(m, central);
+  const double slab = std::max(1.0 * unit, 0.6 * s.spacing);
+  const std::vector<Vec3> profile = profile_of(s, refined, slab, &tip, 90.0 * unit);
+  for (const Nose& nose : find_noses(refined, profile, unit, 3, &seed.forward)) {
+    if ((nose.tip - tip).norm() > 25.0 * unit || nose.prominence < kMinNoseProminence) continue;
+    return Candidate{refined, nose, mirror_rms(mirror_of(refined), central, *s.index) / unit};
   }
-  if (chosen)
-    if (const std::optional<Candidate> again = around_the_nose(s, *chosen, slab)) chosen = again;
-  return chosen;
+  return std::nullopt;
 }
 
-struct Fitted {
-  Landmarks found; // mm
-  double fit_rms = std::numeric_limits<double>::infinity();
+// ---- verification: the landmarks a candidate implies ---------------------------------------------------
+
+// How well landmarks (scan units) sit on the average face: the similarity fit (weights as fit_weight)
+// gives the face's scale; the RMS, in template millimetres, of the nose tip and the eye and mouth
+// corners from the template's with the nose tip on the origin (a landmark not found counts as 30 mm).
+// The face's top and bottom do not count: they are derived, and a beard or an open mouth moves the chin.
+struct Shape {
+  double mm_per_unit = 0.0;
+  double rms_mm = std::numeric_limits<double>::infinity();
+  FaceFrame frame; // at mm_per_unit
 };
+
+constexpr Landmark kStable[] = {Landmark::NoseTip,      Landmark::EyeInnerLeft,  Landmark::EyeInnerRight,
+                                Landmark::EyeOuterLeft, Landmark::EyeOuterRight, Landmark::MouthLeft,
+                                Landmark::MouthRight};
+
+double stable_rms(const Landmarks& landmarks, const FaceFrame& frame) {
+  double sum = 0.0;
+  for (Landmark l : kStable)
+    sum += landmarks.has(l) ? (frame.to_canonical(*landmarks[l]) - *canonical_template()[l]).squaredNorm()
+                            : kMissing * kMissing;
+  return std::sqrt(sum / std::size(kStable));
+}
+
+std::optional<Shape> shape_of(const Landmarks& landmarks) {
+  const Result<ScaleEstimate> scale = estimate_scale(landmarks);
+  if (!scale || !landmarks.has(Landmark::NoseTip)) return std::nullopt;
+  Result<FaceFrame> frame = frame_from_landmarks(landmarks, scale->estimated, Units::Unknown);
+  if (!frame) return std::nullopt;
+  return Shape{scale->estimated, stable_rms(landmarks, *frame), *frame};
+}
+
+// The scale (mm per unit) landmarks found with windows of a wrong scale say: the median, over the eye
+// and mouth corners, of the ratio of the template's distance from the nose tip to theirs. Distances do
+// not depend on the frame's rotation, and the median on the corners a wrong window got right (inner eye
+// corners are the strongest hollows near a nose, mouth corners the ends of the mouth's line).
+std::optional<double> robust_scale(const Landmarks& found) {
+  if (!found.has(Landmark::NoseTip)) return std::nullopt;
+  std::vector<double> ratios;
+  for (Landmark l : kStable)
+    if (l != Landmark::NoseTip && found.has(l)) {
+      const double d = (*found[l] - *found[Landmark::NoseTip]).norm();
+      if (d > 0.0)
+        ratios.push_back((*canonical_template()[l] - *canonical_template()[Landmark::NoseTip]).norm() / d);
+    }
+  if (ratios.size() < 3) return std::nullopt;
+  std::ranges::nth_element(ratios, ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2));
+  return ratios[ratios.size() / 2];
+}
+
+Similarity similarity(const FaceFrame& f) { return {f.rotation, f.translation, f.scale}; }
 
 // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
-// The landmarks are searched in it, the frame fitted to them, and again until the frame stops moving (a
-// fixed point does not depend on where the search started). The nose's shape says which way is up, but
-// not always clearly (a short nose, a low-resolution scan): both ways are tried, and the one whose
-// landmarks sit best on an average face wins.
-Fitted fit_landmarks(const Scene& s, const Nose& nose) {
-  std::optional<Fitted> best;
-  for (const Vec3& up : {nose.up, Vec3(-nose.up)}) {
-    Eigen::Matrix3d r;
-    r.row(1) = up.transpose();
-    r.row(2) = nose.forward.transpose();
-    r.row(0) = up.cross(nose.forward).transpose();
-    Rigid frame{r, -r * nose.tip};
-    Fitted attempt;
-    for (int round = 0; round < 6; ++round) {
-      attempt.found = search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame);
-      Result<FaceFrame> fit = frame_from_landmarks(attempt.found, Units::Millimetres);
-      if (!fit) break;
-      attempt.fit_rms = fit_rms(attempt.found, *fit);
-      const double turn = Eigen::AngleAxisd(fit->rotation * frame.rotation.transpose()).angle();
-      const double shift = (fit->translation - frame.translation).norm();
-      frame = {fit->rotation, fit->translation};
-      if (round > 0 && turn < 1e-4 && shift < 0.01) break; // 0.006°, 10 µm
-    }
-    if (!best || attempt.fit_rms < best->fit_rms) best = std::move(attempt);
-  }
-  return *best;
+Similarity nose_frame(const Nose& nose, const Vec3& up, double mm_per_unit) {
+  Eigen::Matrix3d r;
+  r.row(1) = up.transpose();
+  r.row(2) = nose.forward.transpose();
+  r.row(0) = up.cross(nose.forward).transpose();
+  return {r, -mm_per_unit * (r * nose.tip), mm_per_unit};
 }
 
+struct Verified {
+  Landmarks found; // scan units
+  double mm_per_unit = 0.0;
+  double shape_rms = std::numeric_limits<double>::infinity();
+  Similarity frame; // the last one fitted
+};
+
+// The landmarks searched in the frame the nose gives (both ways up), the frame and the scale refitted
+// to them, a few times: a candidate that is a face ends with its landmarks on the average face's.
+// With `fixed_scale`, the scale stays (the file stated the units).
+Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, bool fixed_scale, int rounds,
+                double cell) {
+  // The first round both ways up; the rest the better way.
+  Verified best;
+  Similarity frame;
+  for (const Vec3& up : {c.nose.up, Vec3(-c.nose.up)}) {
+    const Similarity start = nose_frame(c.nose, up, mm_per_unit);
+    const Landmarks found =
+        detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, start, cell, s.loops);
+    const std::optional<Shape> shape = shape_of(found);
+    if (shape && shape->rms_mm < best.shape_rms) {
+      best = {found, mm_per_unit, shape->rms_mm, start};
+      frame = start;
+    }
+  }
+  for (int round = 1; round <= rounds && std::isfinite(best.shape_rms); ++round) {
+    // The next round at the scale the landmarks say (within reason: one round moves it 1.5× at most).
+    const double mm = fixed_scale ? frame.scale
+                                  : std::clamp(robust_scale(best.found).value_or(frame.scale),
+                                               frame.scale / 1.5, frame.scale * 1.5);
+    Result<FaceFrame> next = frame_from_landmarks(best.found, mm, Units::Unknown);
+    if (!next) break;
+    const double turn = Eigen::AngleAxisd(next->rotation * frame.rotation.transpose()).angle();
+    if (turn < 0.01 && std::abs(mm / frame.scale - 1.0) < 0.01) break; // settled
+    frame = similarity(*next);
+    if (round == rounds) break;
+    const Landmarks found =
+        detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame, cell, s.loops);
+    const std::optional<Shape> shape = shape_of(found);
+    if (!shape) break;
+    best = {found, frame.scale, shape->rms_mm, frame};
+  }
+  return best;
+}
+
+// ---- the final frame ------------------------------------------------------------------------------------
+
+struct Fitted {
+  Landmarks found; // scan units
+  FaceFrame frame;
+  double shape_rms = std::numeric_limits<double>::infinity();
+};
+
+// The landmarks searched in `start`, the frame fitted to them (rigidly, at the scale chosen), and again
+// until the frame stops moving (a fixed point does not depend on where the search started).
+std::optional<Fitted> fit_landmarks(const Scene& s, Similarity frame, double mm_per_unit, Units units) {
+  frame.translation *= mm_per_unit / frame.scale;
+  frame.scale = mm_per_unit;
+  std::optional<Fitted> fitted;
+  for (int round = 0; round < 10; ++round) {
+    Landmarks found =
+        detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame, 1.0, s.loops);
+    Result<FaceFrame> fit = frame_from_landmarks(found, mm_per_unit, units);
+    if (!fit) break;
+    const std::optional<Shape> shape = shape_of(found);
+    Fitted now{std::move(found), *fit, shape ? shape->rms_mm : std::numeric_limits<double>::infinity()};
+    const double turn = Eigen::AngleAxisd(fit->rotation * frame.rotation.transpose()).angle();
+    const double shift = (fit->translation - frame.translation).norm();
+    frame = similarity(*fit);
+    const bool settled = round > 0 && turn < 1e-4 && shift < 0.01; // 0.006°, 10 µm
+    // Settled: the fixed point. Else (landmarks jumping between two places) the round that fitted best.
+    if (settled || !fitted || now.shape_rms < fitted->shape_rms) fitted = std::move(now);
+    if (settled) break;
+  }
+  return fitted;
+}
+
+// ---- confidence -----------------------------------------------------------------------------------------
+
+struct Cues {
+  double symmetry = 0.0, nose = 0.0, shape = 0.0, coverage = 0.0;
+  [[nodiscard]] double confidence() const { return std::min({symmetry, nose, shape, coverage}); }
+};
+
+Cues cues(double symmetry_rms_mm, double prominence_mm, double shape_rms_mm, std::size_t found) {
+  return {clamp01(1.0 - (symmetry_rms_mm - 2.0) / 6.0), clamp01((prominence_mm - kMinNoseProminence) / 12.0),
+          clamp01(1.0 - (shape_rms_mm - 9.5) / 4.5), static_cast<double>(found) / kLandmarkCount};
+}
+
+// The scales (mm per unit) to try when the file states no units: the scan, whatever it holds, is a
+// face patch (0.2-0.35 m across), a head (0.35-0.6 m) or a bust (0.6-1.2 m).
+std::vector<double> candidate_scales(const Scene& s) {
+  std::vector<double> out;
+  for (double across : {260.0, 480.0, 880.0})
+    out.push_back(across / s.size);
+  return out;
+}
+
+// Which candidate is the face: the one whose landmarks sit best on the average face and whose central
+// face is most symmetric about its plane (a wrong plane through a face can show a bigger "nose", the
+// chin or the nose seen askew, but not a symmetric face around it; a pedestal's corner is symmetric but
+// has no eyes and mouth around it). Millimetres of misfit, negated.
+double rank(const Candidate& c, const Verified& v) { return -(v.shape_rms + 3.0 * c.rms_mm); }
+
+struct Hypothesis {
+  Candidate candidate;
+  Verified verified;
+  double rank = -1.0;
+};
+
 } // namespace
+
+Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const FaceFrame& frame) {
+  if (given.count() == kLandmarkCount || scan.vertex_count() == 0) return given;
+  const PointIndex index(scan.positions);
+  const Landmarks found =
+      detail::search_landmarks(scan.positions, scan.triangles, detail::median_spacing(scan.positions, index),
+                               similarity(frame), 1.0, detail::boundary_loops(scan.triangles));
+  Landmarks out = given;
+  for (std::size_t i = 0; i < kLandmarkCount; ++i)
+    if (!out.points[i] && found.points[i]) out.points[i] = *found.points[i];
+  return out;
+}
 
 Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
   const std::string source = scan.name;
@@ -552,47 +510,163 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     return make_error(ErrorCode::NoFace,
                       fmt::format("no face found: {} points are too few to hold one", scan.vertex_count()),
                       source);
-  const Units units = detect_units(scan);
-  const double mm = millimetres_per(units);
-  const Scene scene = prepare(scan, mm, options);
+  const Scene scene = prepare(scan, options);
+  if (!(scene.size > 0.0) || scene.spacing <= 0.0)
+    return make_error(ErrorCode::NoFace, "no face found: the points do not span a surface", source);
+  const bool fixed_scale = scan.units != Units::Unknown;
+  const std::vector<double> scales =
+      fixed_scale ? std::vector<double>{millimetres_per(scan.units)} : candidate_scales(scene);
+
+  // Hypotheses: on the scan's own symmetry planes, every nose-like point; around the most pointed
+  // extreme points, the local symmetry plane and the nose on it; each at every candidate scale. Every
+  // one is tried quickly (the landmarks it implies on a coarse depth map, the scale they imply), the
+  // most face-like few thoroughly.
+  const double mid = scales[scales.size() / 2];
+  const std::vector<Plane> planes = global_planes(scene, options.directions, 4);
+  struct Local {
+    Extreme place;
+    Plane plane;
+  };
+  std::vector<Local> locals;
+  {
+    std::vector<std::pair<double, Extreme>> pointed;
+    for (const Extreme& e : extreme_places(extreme_points(scene, 600), 1.0 / mid, 1000))
+      if (const double fall = fall_around(scene, e.point, e.direction, 1.0 / mid); fall >= 5.0)
+        pointed.emplace_back(fall, e);
+    std::ranges::sort(pointed, std::greater{}, &std::pair<double, Extreme>::first);
+    for (const auto& [fall, e] : pointed) {
+      if (locals.size() == 10) break;
+      if (const std::optional<Plane> plane = local_plane(scene, e.point, e.direction, 1.0 / mid))
+        locals.push_back({e, *plane});
+    }
+  }
 
   double best_prominence = 0.0;
-  const std::optional<Candidate> chosen =
-      choose_plane(scene, symmetry_seeds(scene, options.directions), best_prominence);
-  if (!chosen)
+  std::vector<Hypothesis> quick;
+  for (const double mm : scales) {
+    const double unit = 1.0 / mm;
+    const double slab = std::max(1.0 * unit, 0.6 * scene.spacing);
+    std::vector<Candidate> seeds;
+    const auto add = [&](const Plane& plane, const Nose& nose) {
+      best_prominence = std::max(best_prominence, nose.prominence);
+      if (nose.prominence < kMinNoseProminence) return;
+      if (std::ranges::any_of(seeds, [&](const Candidate& o) {
+            return (o.nose.tip - nose.tip).norm() < 3.0 * unit &&
+                   std::abs(o.plane.normal.dot(plane.normal)) > 0.995;
+          }))
+        return;
+      seeds.push_back({plane, nose, 0.0});
+    };
+    for (const Plane& plane : planes)
+      for (const Nose& nose : find_noses(plane, profile_of(scene, plane, slab), unit, 3))
+        add(plane, nose);
+    for (const Local& l : locals) {
+      const auto noses = find_noses(l.plane, profile_of(scene, l.plane, slab, &l.place.point, 40.0 * unit),
+                                    unit, 1, &l.place.direction);
+      if (!noses.empty()) add(l.plane, noses.front());
+    }
+    for (const Candidate& seed : seeds) {
+      // A seed where an earlier scale's try ended up near this scale is tried already.
+      if (std::ranges::any_of(quick, [&](const Hypothesis& h) {
+            return (h.candidate.nose.tip - seed.nose.tip).norm() < 5.0 * unit &&
+                   std::abs(std::log(h.verified.mm_per_unit / mm)) < std::log(1.3);
+          }))
+        continue;
+      // The plane registered roughly on the central face, and the nose on it again.
+      const std::optional<Candidate> c = around_the_nose(scene, seed.plane, seed.nose, unit, 400, 10);
+      if (!c) continue;
+      Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 2.0)};
+      h.rank = rank(*c, h.verified);
+      quick.push_back(std::move(h));
+    }
+  }
+  std::ranges::sort(quick, std::greater{}, &Hypothesis::rank);
+  std::vector<Hypothesis> hypotheses;
+  for (const Hypothesis& q : quick) {
+    if (hypotheses.size() == 3) break;
+    const double mm = q.verified.mm_per_unit;
+    if (std::ranges::any_of(hypotheses, [&](const Hypothesis& h) {
+          return (h.candidate.nose.tip - q.candidate.nose.tip).norm() < 5.0 / mm &&
+                 std::abs(std::log(h.verified.mm_per_unit / mm)) < 0.15;
+        }))
+      continue;
+    const std::optional<Candidate> c = around_the_nose(scene, q.candidate.plane, q.candidate.nose, 1.0 / mm);
+    if (!c) continue;
+    Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 1.0)};
+    h.rank = rank(*c, h.verified);
+    hypotheses.push_back(std::move(h));
+  }
+  if (hypotheses.empty())
     return make_error(
         ErrorCode::NoFace,
         fmt::format("no face found: no nose-like point on any symmetry plane (most prominent {:.1f} mm, "
                     "a nose stands at least {:.0f} mm out of its profile)",
                     best_prominence, kMinNoseProminence),
         source);
+  const Hypothesis& best = *std::ranges::max_element(hypotheses, {}, &Hypothesis::rank);
 
-  const Fitted fitted = fit_landmarks(scene, chosen->nose);
-  Landmarks found = fitted.found;
-  for (auto& p : found.points)
-    if (p) *p /= mm;
-  found.units = units;
-  Result<FaceFrame> frame = frame_from_landmarks(found, units);
-  if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, source);
+  // The scale: stated by the file, else the one the landmarks give, snapped to a standard unit when
+  // close to one. Then the landmarks again at that scale, until the scale the landmarks give stays.
+  Units units = scan.units;
+  double mm = best.verified.mm_per_unit;
+  if (!fixed_scale) {
+    if (const std::optional<Shape> shape = shape_of(best.verified.found)) mm = shape->mm_per_unit;
+    units = snap_units(mm);
+    if (units != Units::Unknown) mm = millimetres_per(units);
+  }
+  Candidate chosen = best.candidate;
+  if (std::abs(mm / best.verified.mm_per_unit - 1.0) > 0.02)
+    if (const std::optional<Candidate> again = around_the_nose(scene, chosen.plane, chosen.nose, 1.0 / mm))
+      chosen = *again;
+  std::optional<Fitted> fitted;
+  // From the frame the refined symmetry plane and nose give (it fixes the roll and yaw better than
+  // landmarks searched on a coarse map), the way up verification found.
+  const Vec3 up =
+      best.verified.frame.rotation.row(1).dot(chosen.nose.up) >= 0.0 ? chosen.nose.up : Vec3(-chosen.nose.up);
+  Similarity start = nose_frame(chosen.nose, up, mm);
+  for (int pass = 0; pass < 3; ++pass) {
+    fitted = fit_landmarks(scene, start, mm, units);
+    if (!fitted || fixed_scale || units != Units::Unknown) break;
+    const std::optional<Shape> shape = shape_of(fitted->found);
+    if (!shape || std::abs(shape->mm_per_unit / mm - 1.0) < 1e-3) break;
+    start = similarity(fitted->frame);
+    mm = shape->mm_per_unit;
+  }
+  if (!fitted)
+    return make_error(
+        ErrorCode::NoFace,
+        fmt::format("no face found: the nose-like point at ({:.4g}, {:.4g}, {:.4g}) has too few "
+                    "eye or mouth corners around it to fix a face frame",
+                    chosen.nose.tip.x(), chosen.nose.tip.y(), chosen.nose.tip.z()),
+        source);
 
   Detection out;
-  out.landmarks = found;
-  out.frame = *frame;
-  out.symmetry = {chosen->plane.normal, chosen->plane.offset / mm};
-  out.symmetry_rms_mm = chosen->rms;
-  out.nose_prominence_mm = chosen->nose.prominence;
-  out.fit_rms_mm = fitted.fit_rms;
-  const double coverage = static_cast<double>(found.count()) / kLandmarkCount;
-  out.confidence = std::min({clamp01(1.0 - (out.symmetry_rms_mm - 2.0) / 6.0),
-                             clamp01((out.nose_prominence_mm - kMinNoseProminence) / 12.0),
-                             clamp01(1.0 - (out.fit_rms_mm - 8.0) / 14.0), coverage});
+  out.landmarks = fitted->found;
+  out.landmarks.units = units;
+  out.frame = fitted->frame;
+  out.symmetry = chosen.plane;
+  // The symmetry and the nose measured again around the nose tip found, at the final scale.
+  const double rescale = mm / best.verified.mm_per_unit;
+  out.symmetry_rms_mm = chosen.rms_mm * rescale;
+  out.nose_prominence_mm = chosen.nose.prominence * rescale;
+  Nose final_nose = chosen.nose;
+  final_nose.tip = *fitted->found[Landmark::NoseTip];
+  final_nose.forward = fitted->frame.axis_in_scan(2); // looking at the face from the front
+  if (const std::optional<Candidate> around = around_the_nose(scene, chosen.plane, final_nose, 1.0 / mm)) {
+    out.symmetry = around->plane;
+    out.symmetry_rms_mm = around->rms_mm;
+    out.nose_prominence_mm = around->nose.prominence;
+  }
+  out.fit_rms_mm = fitted->shape_rms;
+  const Cues c = cues(out.symmetry_rms_mm, out.nose_prominence_mm, out.fit_rms_mm, out.landmarks.count());
+  out.confidence = c.confidence();
   if (out.confidence < options.min_confidence)
     return make_error(
         ErrorCode::NoFace,
         fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
                     "landmark fit {:.1f} mm, {} of {} landmarks)",
                     out.confidence, options.min_confidence, out.symmetry_rms_mm, out.nose_prominence_mm,
-                    out.fit_rms_mm, found.count(), kLandmarkCount),
+                    out.fit_rms_mm, out.landmarks.count(), kLandmarkCount),
         source);
   return out;
 }
@@ -608,8 +682,15 @@ Result<Alignment> align_scan(const Mesh& scan, std::optional<Landmarks> given, s
     }
     return Alignment{std::move(found->landmarks), found->frame, found->confidence};
   }
-  if (given->units == Units::Unknown) given->units = detect_units(scan);
-  Result<FaceFrame> fitted = frame_from_landmarks(*given, given->units);
+  // Units: the landmark file's, else the scan's, else the scale the landmarks themselves give.
+  if (given->units == Units::Unknown) given->units = scan.units;
+  Result<FaceFrame> fitted = [&]() -> Result<FaceFrame> {
+    if (given->units != Units::Unknown) return frame_from_landmarks(*given, given->units);
+    Result<ScaleEstimate> scale = estimate_scale(*given);
+    if (!scale) return scale.error();
+    given->units = scale->units;
+    return frame_from_landmarks(*given, scale->mm_per_unit, scale->units);
+  }();
   if (!fitted) {
     Error e = std::move(fitted).error();
     e.source = landmarks_source;

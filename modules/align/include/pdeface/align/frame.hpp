@@ -34,19 +34,50 @@ struct FaceFrame {
   [[nodiscard]] Vec3 origin_in_scan() const { return to_scan(Vec3::Zero()); }
 };
 
-//! Units of a face scan: those it states, else guessed from its size (a face is 0.1-0.4 m across:
-//! a bounding-box diagonal under 2 means metres, under 60 centimetres, else millimetres).
+//! Units of a face scan: those it states, else a first guess from its size (a bounding-box diagonal
+//! under 2 means metres, under 60 centimetres, else millimetres). Only a guess: a bust or a scan in
+//! arbitrary units breaks it; detection and `align_scan` find the scale from the face itself
+//! (`estimate_scale`).
 [[nodiscard]] Units detect_units(const Mesh& scan);
 
 //! Where the landmarks sit on an average adult face, in the canonical frame (mm). The rigid fit aligns
 //! found landmarks onto these.
 [[nodiscard]] const Landmarks& canonical_template();
 
-//! The least-squares rigid fit (`Eigen::umeyama`, no scaling beyond the unit conversion) of the given
-//! landmarks onto `canonical_template()`, then shifted so that the nose tip lands exactly on the origin.
-//! Needs the nose tip and at least three landmarks that are not collinear.
-//! Errors: `InvalidArgument` with the landmarks that are missing.
+//! How much a landmark counts when a frame is fitted to landmarks: the stable ones (nose tip, eye corners)
+//! twice as much as the mouth corners, which move with expressions; the face's top and bottom not at all
+//! (they are derived, and a beard or an open mouth moves the chin), unless the others cannot fix a
+//! rotation on their own.
+[[nodiscard]] double fit_weight(Landmark landmark) noexcept;
+
+//! The least-squares rigid fit (`Eigen::umeyama`, no scaling beyond the unit conversion, landmarks
+//! weighted by `fit_weight`) of the given landmarks onto `canonical_template()`, then shifted so that the
+//! nose tip lands exactly on the origin. Needs the nose tip and at least three landmarks that are not
+//! collinear. `Units::Unknown` counts as millimetres. Errors: `InvalidArgument` with the landmarks that
+//! are missing.
 [[nodiscard]] Result<FaceFrame> frame_from_landmarks(const Landmarks& landmarks, Units scan_units);
+//! The same with an explicit scale (millimetres per scan unit, e.g. from `estimate_scale`); `scan_units`
+//! is recorded in the frame.
+[[nodiscard]] Result<FaceFrame> frame_from_landmarks(const Landmarks& landmarks, double mm_per_unit,
+                                                     Units scan_units);
+
+//! A scan's scale as the face in it says.
+struct ScaleEstimate {
+  double mm_per_unit = 1.0;     //!< the scale the frame uses: a standard unit's, or the estimate itself
+  Units units = Units::Unknown; //!< the standard unit the estimate was snapped to, or Unknown
+  double estimated = 1.0;       //!< millimetres per unit from the landmarks alone (before snapping)
+};
+
+//! The standard unit (mm, cm, inch, m) nearest to `mm_per_unit` on a log scale, when within a factor
+//! `kUnitSnapFactor` of it (adult faces differ in size by less); else Unknown.
+inline constexpr double kUnitSnapFactor = 1.6;
+[[nodiscard]] Units snap_units(double mm_per_unit) noexcept;
+
+//! The scale of a scan from its landmarks: the similarity fit (`Eigen::umeyama` with scaling, weights
+//! as `fit_weight`) of the landmarks onto `canonical_template()` gives millimetres per unit, which is
+//! snapped to a standard unit by `snap_units`. Needs at least three landmarks that are not collinear.
+//! Errors: `InvalidArgument`.
+[[nodiscard]] Result<ScaleEstimate> estimate_scale(const Landmarks& landmarks);
 
 //! The mesh with positions (and normals) mapped into the canonical frame; units become mm.
 [[nodiscard]] Mesh to_canonical(const Mesh& scan, const FaceFrame& frame);

@@ -1,0 +1,301 @@
+#include "search.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <unordered_map>
+
+namespace pdeface::align::detail {
+namespace {
+
+// ---- landmarks in the depth map -------------------------------------------------------------------------
+
+// The grid's best point (x, y) of a score, moved to the vertex of the parabola through it and its two
+// neighbours along each axis: landmarks then move continuously with the frame instead of by whole cells.
+Eigen::Vector2d refined_peak(const auto& score, Eigen::Vector2d at, double h) {
+  const std::optional<double> centre = score(at.x(), at.y());
+  if (!centre) return at;
+  Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+  for (int axis = 0; axis < 2; ++axis) {
+    const Eigen::Vector2d d = axis == 0 ? Eigen::Vector2d(h, 0) : Eigen::Vector2d(0, h);
+    const std::optional<double> minus = score(at.x() - d.x(), at.y() - d.y());
+    const std::optional<double> plus = score(at.x() + d.x(), at.y() + d.y());
+    if (!minus || !plus) continue;
+    const double curvature = *minus - 2.0 * *centre + *plus;
+    if (curvature < 0.0) shift[axis] = std::clamp(0.5 * (*minus - *plus) / curvature, -0.5, 0.5) * h;
+  }
+  return at + shift;
+}
+
+// The lateral end of a horizontal hollow (the mouth line, the fissure of an eye): walking from x_from
+// towards x_to, the columns whose most hollow point (over [y0, y1]) is at least `fraction` as deep as
+// the deepest column's; the end is the last of them reached without a gap.
+std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_from, double x_to, double y0,
+                                          double y1, double r, double fraction = 0.35) {
+  const double step = x_to > x_from ? map.cell() : -map.cell();
+  std::vector<std::pair<double, Eigen::Vector2d>> columns; // (most hollow relief, where)
+  for (double x = x_from; (x_to - x) * step >= 0.0; x += step) {
+    std::pair<double, Eigen::Vector2d> best{std::numeric_limits<double>::infinity(), {x, 0.0}};
+    for (double y = y0; y <= y1; y += map.cell())
+      if (const auto rel = map.relief(x, y, r); rel && *rel < best.first)
+        best = {*rel, Eigen::Vector2d(x, y)};
+    columns.push_back(best);
+  }
+  const auto deepest = std::ranges::min_element(columns, {}, &std::pair<double, Eigen::Vector2d>::first);
+  if (deepest == columns.end() || !(deepest->first < 0.0)) return std::nullopt;
+  auto end = deepest;
+  for (auto it = deepest; it != columns.end() && it->first <= fraction * deepest->first; ++it)
+    end = it;
+  // Between the last column in the hollow and the next one out, where the relief crosses the threshold.
+  Eigen::Vector2d where = end->second;
+  if (const auto next = end + 1; next != columns.end() && next->first > end->first) {
+    const double t =
+        std::clamp((fraction * deepest->first - end->first) / (next->first - end->first), 0.0, 1.0);
+    where = end->second + t * (next->second - end->second);
+  }
+  const auto hollowness = [&](double x, double y) -> std::optional<double> {
+    const auto rel = map.relief(x, y, r);
+    return rel ? std::optional<double>(-*rel) : std::nullopt;
+  };
+  return Eigen::Vector2d(where.x(), refined_peak(hollowness, where, map.cell()).y());
+}
+
+// The most cup-shaped point of a window, as (x, y) in the frame.
+std::optional<Eigen::Vector2d> most_cupped(const detail::DepthMap& map, double x0, double x1, double y0,
+                                           double y1) {
+  std::optional<Eigen::Vector2d> best;
+  double top = 0.0; // only cups count
+  for (double y = y0; y <= y1; y += map.cell())
+    for (double x = std::min(x0, x1); x <= std::max(x0, x1); x += map.cell())
+      if (const auto k = map.cupness(x, y); k && *k > top) {
+        top = *k;
+        best = Eigen::Vector2d(x, y);
+      }
+  if (!best) return best;
+  return refined_peak([&](double x, double y) { return map.cupness(x, y); }, *best, map.cell());
+}
+
+// A hole of the mesh seen in the frame: its extent and its extreme vertices across the face.
+struct Hole {
+  Eigen::Vector2d centre, size;
+  std::uint32_t leftmost = 0, rightmost = 0; // least and greatest x
+};
+
+std::vector<Hole> holes_in_view(const Loops& loops, std::span<const Vec3> local, double z_min) {
+  std::vector<Hole> out;
+  for (const auto& loop : loops) {
+    if (loop.size() < 6) continue;
+    Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+    Hole h;
+    bool in_front = true;
+    for (std::uint32_t v : loop) {
+      const Vec3& q = local[v];
+      if (q.z() < z_min) in_front = false;
+      if (q.x() < lo.x()) h.leftmost = v;
+      if (q.x() > hi.x()) h.rightmost = v;
+      lo = lo.cwiseMin(q.head<2>());
+      hi = hi.cwiseMax(q.head<2>());
+    }
+    if (!in_front) continue;
+    h.centre = 0.5 * (lo + hi);
+    h.size = hi - lo;
+    out.push_back(h);
+  }
+  return out;
+}
+
+} // namespace
+
+Loops boundary_loops(std::span<const Triangle> triangles) {
+  // Undirected edges used once.
+  std::unordered_map<std::uint64_t, int> uses;
+  uses.reserve(triangles.size() * 3);
+  const auto key = [](std::uint32_t a, std::uint32_t b) {
+    return (static_cast<std::uint64_t>(std::min(a, b)) << 32U) | std::max(a, b);
+  };
+  for (const Triangle& t : triangles)
+    for (int k = 0; k < 3; ++k)
+      ++uses[key(t[k], t[(k + 1) % 3])];
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> next;
+  for (const auto& [edge, count] : uses)
+    if (count == 1) {
+      const auto a = static_cast<std::uint32_t>(edge >> 32U);
+      const auto b = static_cast<std::uint32_t>(edge & 0xFFFFFFFFU);
+      next[a].push_back(b);
+      next[b].push_back(a);
+    }
+  Loops loops;
+  std::unordered_map<std::uint32_t, bool> seen;
+  for (const auto& [start, unused] : next) {
+    if (seen[start]) continue;
+    std::vector<std::uint32_t> loop, stack{start};
+    seen[start] = true;
+    while (!stack.empty()) {
+      const std::uint32_t v = stack.back();
+      stack.pop_back();
+      loop.push_back(v);
+      for (std::uint32_t w : next[v])
+        if (!seen[w]) {
+          seen[w] = true;
+          stack.push_back(w);
+        }
+    }
+    std::ranges::sort(loop); // an order that does not depend on the hash map's
+    loops.push_back(std::move(loop));
+  }
+  std::ranges::sort(loops, {}, [](const auto& l) { return l.front(); });
+  return loops;
+}
+
+// Landmarks (in the scan's frame and units) found in a depth map of the scan seen in `frame`, whose origin is
+// near the nose tip and whose axes are near the canonical ones: the nose tip as the front-most point
+// near the origin, eye and mouth corners as the hollows of the windows where faces have them, the face's
+// bottom where the midline turns under the chin, its top by the rule of thirds (within the scan).
+Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangle> triangles, double spacing,
+                           const Similarity& frame, double cell, const Loops& loops) {
+  std::vector<Vec3> local(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    local[i] = frame.to_face(points[i]);
+  spacing *= frame.scale;
+  detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, cell);
+  map.rasterise(local, triangles, std::max(1.5 * cell, 1.5 * spacing));
+  map.fill_holes(std::max(1, static_cast<int>(std::lround(4.0 / cell))));
+
+  std::optional<Eigen::Vector3d> tip; // (x, y, z) in the frame
+  for (double y = -15.0; y <= 15.0; y += 1.0)
+    for (double x = -10.0; x <= 10.0; x += 1.0)
+      if (const auto z = map.at(x, y); z && (!tip || *z > tip->z())) tip = Eigen::Vector3d(x, y, *z);
+  if (tip) {
+    const Eigen::Vector2d xy =
+        refined_peak([&](double x, double y) { return map.at(x, y); }, tip->head<2>(), cell);
+    tip = Eigen::Vector3d(xy.x(), xy.y(), map.at(xy.x(), xy.y()).value_or(tip->z()));
+  }
+
+  Landmarks found;
+  auto place = [&](Landmark l, double x, double y) {
+    if (const auto z = map.at(x, y)) found[l] = frame.to_scan(Vec3(x, y, *z));
+  };
+  if (!tip) return found;
+  place(Landmark::NoseTip, tip->x(), tip->y());
+  const double x0 = tip->x(), y0 = tip->y();
+  const detail::DepthMap cups = map.smoothed(2.5);
+  const detail::DepthMap soft = map.smoothed(1.0); // point clouds splat unevenly: their raw map is rough
+  std::vector<double> eye_y, mouth_y;
+  // The mouth line where it crosses the midline. Down the midline from the nose the profile rises onto
+  // the upper lip, dips into the mouth, rises onto the lower lip, dips under it and rises onto the chin:
+  // the mouth is the lowest point between the first two bumps (the lips). Failing that, the deepest
+  // groove (relief) between the nose and the chin.
+  const detail::DepthMap profile_map = map.smoothed(1.5);
+  std::vector<std::pair<double, double>> midline; // (y, z), downwards
+  for (double y = y0 - 6.0; y >= y0 - 60.0; y -= 1.0)
+    if (const auto z = profile_map.at(x0, y)) midline.emplace_back(y, *z);
+  std::vector<std::size_t> bumps;
+  for (std::size_t i = 2; i + 2 < midline.size() && bumps.size() < 2; ++i) {
+    const double z = midline[i].second;
+    if (z >= midline[i - 1].second && z >= midline[i + 1].second && z > midline[i - 2].second &&
+        z > midline[i + 2].second)
+      bumps.push_back(i);
+  }
+  double y_slit = y0 - 30.0;
+  if (bumps.size() == 2) {
+    const auto lowest = std::min_element(midline.begin() + static_cast<std::ptrdiff_t>(bumps[0]),
+                                         midline.begin() + static_cast<std::ptrdiff_t>(bumps[1]),
+                                         [](const auto& a, const auto& b) { return a.second < b.second; });
+    y_slit = lowest->first;
+  } else {
+    double deepest = 0.0;
+    for (double y = y0 - 18.0; y >= y0 - 45.0; y -= 1.0)
+      if (const auto rel = soft.relief(x0, y, 4.0); rel && *rel < deepest) {
+        deepest = *rel;
+        y_slit = y;
+      }
+  }
+  // Eyes and mouths that are holes of the mesh (a morphable model's eyes have no eyeballs; an open mouth
+  // or lips apart): their corners are the ends of the hole, the vertices furthest across the face.
+  const std::vector<Hole> holes = holes_in_view(loops, local, tip->z() - 80.0);
+  const auto eye_hole = [&](double side) -> const Hole* {
+    const Hole* best = nullptr;
+    for (const Hole& h : holes) {
+      const double out = side * (h.centre.x() - x0), up = h.centre.y() - y0;
+      if (out < 10.0 || out > 60.0 || up < 15.0 || up > 60.0) continue;
+      if (h.size.x() < 12.0 || h.size.x() > 55.0 || h.size.y() > 0.75 * h.size.x() + 2.0) continue;
+      if (!best || h.size.x() > best->size.x()) best = &h;
+    }
+    return best;
+  };
+  const Hole* mouth_hole = nullptr;
+  for (const Hole& h : holes) {
+    const double down = y0 - h.centre.y();
+    if (std::abs(h.centre.x() - x0) > 15.0 || down < 15.0 || down > 60.0) continue;
+    if (h.size.x() < 15.0 || h.size.x() > 80.0 || h.size.y() > h.size.x()) continue;
+    if (!mouth_hole || h.size.x() > mouth_hole->size.x()) mouth_hole = &h;
+  }
+  const auto place_vertex = [&](Landmark l, std::uint32_t v) { found[l] = points[v]; };
+  if (mouth_hole) y_slit = mouth_hole->centre.y();
+  for (double side : {1.0, -1.0}) {
+    const bool left = side > 0;
+    // Eye corners are the ends of an eye hole, else cups (concave in every direction) on a lightly
+    // smoothed map: the inner one between the nose bridge and the eyeball, the outer one 18-40 mm further
+    // out at about the same height.
+    if (const Hole* eye = eye_hole(side)) {
+      // The face's left is +x: its inner corner is the hole's least x, its outer the greatest.
+      place_vertex(left ? Landmark::EyeInnerLeft : Landmark::EyeInnerRight,
+                   left ? eye->leftmost : eye->rightmost);
+      place_vertex(left ? Landmark::EyeOuterLeft : Landmark::EyeOuterRight,
+                   left ? eye->rightmost : eye->leftmost);
+      eye_y.push_back(eye->centre.y());
+    } else if (const auto inner =
+                   most_cupped(cups, x0 + side * 6.0, x0 + side * 30.0, y0 + 15.0, y0 + 55.0)) {
+      place(left ? Landmark::EyeInnerLeft : Landmark::EyeInnerRight, inner->x(), inner->y());
+      eye_y.push_back(inner->y());
+      if (const auto outer = most_cupped(cups, inner->x() + side * 18.0, inner->x() + side * 40.0,
+                                         inner->y() - 10.0, inner->y() + 8.0))
+        place(left ? Landmark::EyeOuterLeft : Landmark::EyeOuterRight, outer->x(), outer->y());
+    }
+    if (mouth_hole) {
+      place_vertex(left ? Landmark::MouthLeft : Landmark::MouthRight,
+                   left ? mouth_hole->rightmost : mouth_hole->leftmost);
+      mouth_y.push_back(local[left ? mouth_hole->rightmost : mouth_hole->leftmost].y());
+    } else if (const auto mouth = hollow_end(soft, x0, x0 + side * 40.0, y_slit - 8.0, y_slit + 6.0, 5.0)) {
+      place(left ? Landmark::MouthLeft : Landmark::MouthRight, mouth->x(), mouth->y());
+      mouth_y.push_back(mouth->y());
+    }
+  }
+  // A corner the surface shows on one side only (a shadowed or cut outer corner): mirror the other.
+  for (Landmark l : {Landmark::EyeOuterLeft, Landmark::EyeOuterRight, Landmark::EyeInnerLeft,
+                     Landmark::EyeInnerRight, Landmark::MouthLeft, Landmark::MouthRight}) {
+    const std::optional<Vec3>& other = found[mirrored(l)];
+    if (found.has(l) || !other) continue;
+    const Vec3 seen = frame.to_face(*other);
+    place(l, 2.0 * x0 - seen.x(), seen.y());
+  }
+  auto mean = [](const std::vector<double>& v, double fallback) {
+    return v.empty() ? fallback : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+  };
+  const double y_eyes = mean(eye_y, y0 + 38.0);
+  const double y_mouth = mean(mouth_y, y0 - 35.0);
+
+  // The chin's most forward point on the midline below the mouth, then down while the profile stays
+  // within 15 mm of it (below that, it turns under the chin towards the neck).
+  std::optional<Eigen::Vector2d> chin; // (y, z)
+  for (double y = y_mouth - 12.0; y >= y_mouth - 55.0; y -= 1.0)
+    if (const auto z = map.at(x0, y); z && (!chin || *z > chin->y())) chin = Eigen::Vector2d(y, *z);
+  if (!chin) return found;
+  double y_bottom = chin->x();
+  while (y_bottom > -140.0) {
+    const auto z = map.at(x0, y_bottom - 1.0);
+    if (!z || *z < chin->y() - 15.0) break;
+    y_bottom -= 1.0;
+  }
+  place(Landmark::FaceBottom, x0, y_bottom);
+  // Rule of thirds: hairline to nasion ~ half of nasion to chin; the nasion is a few mm above the eyes.
+  const double y_nasion = y_eyes + 4.0;
+  const double y_top = y_nasion + 0.5 * (y_nasion - y_bottom);
+  double y_scan = y_nasion;
+  while (y_scan < y_top && map.at(x0, y_scan + 1.0))
+    y_scan += 1.0;
+  place(Landmark::FaceTop, x0, y_scan);
+  return found;
+}
+
+} // namespace pdeface::align::detail

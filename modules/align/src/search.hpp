@@ -1,0 +1,41 @@
+#pragma once
+// The landmark search in a depth map of the scan seen from the front of a face frame. Internal to align.
+
+#include "depth_map.hpp"
+#include "pdeface/align/landmarks.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace pdeface::align::detail {
+
+// A similarity into a face frame (mm): q = scale · rotation · p + translation.
+struct Similarity {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Vec3 translation = Vec3::Zero();
+  double scale = 1.0; // face mm per scan unit
+
+  [[nodiscard]] Vec3 to_face(const Vec3& p) const { return scale * (rotation * p) + translation; }
+  [[nodiscard]] Vec3 to_scan(const Vec3& q) const {
+    return rotation.transpose() * ((q - translation) / scale);
+  }
+};
+
+// The boundaries of a mesh (its holes and outer border) as vertex sets: the connected pieces of the
+// edges that only one triangle has.
+using Loops = std::vector<std::vector<std::uint32_t>>;
+[[nodiscard]] Loops boundary_loops(std::span<const Triangle> triangles);
+
+// Landmarks (in the scan's frame and units) found in a depth map of the scan seen in `frame`, whose
+// origin is near the nose tip and whose axes are near the canonical ones. `spacing` is the scan's point
+// spacing in its units; `cell` the depth map's (mm): 1 for the final landmarks, coarser to try a
+// candidate quickly. `loops` are the scan's boundaries (`boundary_loops`): an eye or a mouth that is a
+// hole in the mesh has its corners at the ends of the hole.
+[[nodiscard]] Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                         double spacing, const Similarity& frame, double cell = 1.0,
+                                         const Loops& loops = {});
+
+} // namespace pdeface::align::detail
