@@ -12,20 +12,6 @@ namespace {
 
 using align::Landmark;
 
-// Mesh density: the median edge length (point spacing for a cloud).
-double density(const Mesh& scan, const SectionOptions& section) {
-  if (scan.is_point_cloud())
-    return section.spacing_mm > 0.0 ? section.spacing_mm : point_spacing(scan.positions);
-  std::vector<double> lengths;
-  const std::size_t step = std::max<std::size_t>(1, scan.triangles.size() / 2000);
-  for (std::size_t i = 0; i < scan.triangles.size(); i += step)
-    lengths.push_back((scan.positions[scan.triangles[i][0]] - scan.positions[scan.triangles[i][1]]).norm());
-  if (lengths.empty()) return 0.0;
-  auto mid = lengths.begin() + static_cast<std::ptrdiff_t>(lengths.size() / 2);
-  std::nth_element(lengths.begin(), mid, lengths.end());
-  return *mid;
-}
-
 double mean_abs_x(const align::Landmarks& l, Landmark a, Landmark b) {
   return 0.5 * (std::abs(l[a]->x()) + std::abs(l[b]->x()));
 }
@@ -132,8 +118,9 @@ Result<PlaneLayout> profile_planes(const Mesh& canonical, const align::Landmarks
   const double outer = mean_abs_x(landmarks, Landmark::EyeOuterLeft, Landmark::EyeOuterRight);
 
   // The face border, each side on its own: beyond the mask, unless the surface ends or turns away first.
-  const double edge = density(canonical, section);
-  const double min_gap = std::max(options.min_spacing_mm, edge);
+  // Planes closer than a mesh edge still cut it well (sections interpolate inside triangles): only joints
+  // that all but coincide are an error.
+  const double min_gap = options.min_spacing_mm;
   const double target = options.border_beyond_mask * mask->half_width;
   const ProfileAxes across{Vec3::UnitX(), Vec3::UnitZ()};
   std::array<std::array<double, 5>, 2> features{};

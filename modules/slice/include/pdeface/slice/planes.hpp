@@ -42,7 +42,7 @@ struct PlaneOptions {
   //! The border stays where the face, seen on horizontal cross-sections beyond the outer eye corners,
   //! falls back by less than this angle from the x axis.
   double max_turn_deg = 70.0;
-  double min_spacing_mm = 1.0; //!< joints closer than this (or than one mesh edge) are an error
+  double min_spacing_mm = 1.0; //!< joints closer than this are an error
   FaceMaskOptions mask;        //!< the face's outline from its landmarks
 };
 
