@@ -1,6 +1,6 @@
 #include "pdeface/slice/face_mask.hpp"
 
-#include "landmark_check.hpp"
+#include "detail.hpp"
 
 #include <fmt/format.h>
 

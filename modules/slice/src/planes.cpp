@@ -1,6 +1,6 @@
 #include "pdeface/slice/planes.hpp"
 
-#include "landmark_check.hpp"
+#include "detail.hpp"
 
 #include <fmt/format.h>
 
