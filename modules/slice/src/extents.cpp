@@ -129,6 +129,32 @@ double mask_coverage(const Mesh& canonical, const FaceMask& mask, const SectionO
   return inside == 0 ? 0.0 : static_cast<double>(covered) / static_cast<double>(inside);
 }
 
+double mask_coverage(std::span<const Section> cuts, std::span<const ProfilePlane> planes,
+                     const FaceMask& mask) {
+  // Each curve's covered share of the mask's heights at its plane, every millimetre.
+  std::vector<double> share(planes.size(), 0.0);
+  for (std::size_t j = 0; j < planes.size(); ++j)
+    if (const auto h = mask.heights_at(planes[j].x)) {
+      std::size_t inside = 0, covered = 0;
+      for (double y = (*h)[0] + 0.5; y < (*h)[1]; y += 1.0, ++inside)
+        covered += section_at(cuts[j], {}, y) ? 1 : 0;
+      share[j] = inside == 0 ? 1.0 : static_cast<double>(covered) / static_cast<double>(inside);
+    }
+  // Across the mask, every half millimetre, weighted by the mask's height there.
+  double total = 0.0, covered = 0.0;
+  for (double x = -mask.half_width + 0.25; x < mask.half_width; x += 0.5) {
+    const auto h = mask.heights_at(x);
+    if (!h) continue;
+    const double height = (*h)[1] - (*h)[0];
+    total += height;
+    if (planes.empty() || x < planes.front().x || x > planes.back().x) continue;
+    const auto nearest =
+        std::ranges::min_element(planes, {}, [&](const ProfilePlane& p) { return std::abs(p.x - x); });
+    covered += height * share[static_cast<std::size_t>(nearest - planes.begin())];
+  }
+  return total > 0.0 ? covered / total : 0.0;
+}
+
 std::vector<std::string> missing_parts(const ProfileSet& set, const PlaneLayout& layout) {
   std::vector<std::string> out;
   for (int end = 0; end < 2; ++end) {

@@ -27,6 +27,11 @@ struct Extents {
 [[nodiscard]] double mask_coverage(const Mesh& canonical, const FaceMask& mask,
                                    const SectionOptions& section);
 
+//! The same judged on the curves' own sections, each standing for the stretch of the mask nearer to it than
+//! to any other curve (the mask beyond the border curves counts as missing).
+[[nodiscard]] double mask_coverage(std::span<const Section> cuts, std::span<const ProfilePlane> planes,
+                                   const FaceMask& mask);
+
 //! What the curves lack of the mask, in words: runs of curves that end short of the mask's outline because
 //! the surface ends, and sides cut short.
 [[nodiscard]] std::vector<std::string> missing_parts(const ProfileSet& set, const PlaneLayout& layout);

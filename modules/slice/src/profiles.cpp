@@ -67,16 +67,19 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
   set.max_hole_mm = options.max_hole_mm.value_or(options.hole_fraction * 2.0 * mask->half_height);
   section.max_gap_mm = set.max_hole_mm;
 
-  set.mask_coverage = detail::mask_coverage(canonical, *mask, section);
-  if (set.mask_coverage < options.min_mask_coverage)
+  auto mostly_missing = [&](double coverage) {
     return make_error(
         ErrorCode::NoFace,
         fmt::format("most of the face is missing: the scan has surface on {:.0f} % of the face its "
                     "landmarks outline (at least {:.0f} % is needed)",
-                    100.0 * set.mask_coverage, 100.0 * options.min_mask_coverage));
-
+                    100.0 * coverage, 100.0 * options.min_mask_coverage));
+  };
   Result<PlaneLayout> layout = profile_planes(canonical, landmarks, options.planes, section);
-  if (!layout) return layout.error();
+  if (!layout) {
+    // A face mostly missing fails somewhere in the layout: then that is the answer, not where.
+    const double coverage = detail::mask_coverage(canonical, *mask, section);
+    return coverage < options.min_mask_coverage ? mostly_missing(coverage) : layout.error();
+  }
   const std::vector<ProfilePlane>& planes = layout->planes;
   set.border = layout->border;
   set.border_mm = layout->border_mm;
@@ -102,6 +105,8 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
   const std::vector<Section> cuts = sections(canonical, all, all_axes, section);
   const std::span<const Section> curve_cuts(cuts.data(), planes.size());
   const ProfileAxes axes;
+  set.mask_coverage = detail::mask_coverage(curve_cuts, planes, *mask);
+  if (set.mask_coverage < options.min_mask_coverage) return mostly_missing(set.mask_coverage);
 
   const FaceMask region = mask->grown(options.region_across, options.region_along);
   const detail::Extents extents =

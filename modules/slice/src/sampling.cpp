@@ -18,7 +18,7 @@ struct HeightTable {
 // extents share the relative heights. The "length" counts each radian the curve turns as `turn_weight` mm:
 // samples spaced evenly in it crowd where the profile bends (the lips, the nose), not only where it is long.
 HeightTable height_table(Spline spline, std::array<double, 2> extent, double turn_weight) {
-  constexpr std::size_t dense = 2048;
+  constexpr std::size_t dense = 512;
   const double span = std::max(extent[1] - extent[0], 1e-9);
   HeightTable table{std::move(spline), {}, {}, {}};
   Vec3 previous = table.spline.evaluate(0.0);
