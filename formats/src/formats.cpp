@@ -43,6 +43,14 @@ std::string lowercase(std::string s) {
   return s;
 }
 
+// ".wrl .obj .ply ...": every format's canonical extension, for messages.
+std::string extension_list() {
+  std::string out;
+  for (const FormatInfo& f : kFormats)
+    out += (out.empty() ? "" : " ") + std::string(f.extensions.front());
+  return out;
+}
+
 bool starts_with_ci(std::string_view bytes, std::string_view prefix) {
   if (bytes.size() < prefix.size()) return false;
   return lowercase(std::string(bytes.substr(0, prefix.size()))) == prefix;
@@ -95,6 +103,22 @@ std::optional<Format> format_from_path(const std::filesystem::path& path) {
   return std::nullopt;
 }
 
+Result<Format> format_from_name(std::string_view name) {
+  std::string dotted = "." + lowercase(std::string(name));
+  for (const FormatInfo& f : kFormats)
+    if (std::ranges::find(f.extensions, dotted) != f.extensions.end()) return f.format;
+  return make_error(ErrorCode::UnsupportedFormat,
+                    fmt::format("unknown format '{}' (one of {})", name, extension_list()));
+}
+
+std::vector<std::string> format_names() {
+  std::vector<std::string> out;
+  for (const FormatInfo& f : kFormats)
+    for (std::string_view e : f.extensions)
+      out.emplace_back(e.substr(1));
+  return out;
+}
+
 std::optional<Format> format_from_content(std::string_view bytes) {
   if (bytes.starts_with("#VRML")) return Format::Vrml;
   if (bytes.starts_with("glTF")) return Format::Glb;
@@ -130,8 +154,9 @@ Result<LoadedMesh> read_mesh(std::string_view bytes, std::string_view source, co
   if (!format) {
     if (bytes.empty()) return make_error(ErrorCode::Empty, "the file is empty", std::string(source));
     return make_error(ErrorCode::UnsupportedFormat,
-                      "unknown format: neither the extension nor the content names one we read "
-                      "(.wrl .obj .ply .off .stl .gltf .glb .drc)",
+                      fmt::format("unknown format: neither the extension nor the content names one we read "
+                                  "({})",
+                                  extension_list()),
                       std::string(source));
   }
   Result<Mesh> mesh = decode(*format, bytes, source, notes);
@@ -152,9 +177,8 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
   const std::optional<Format> format = options.format ? options.format : format_from_path(path);
   if (!format)
     return make_error(ErrorCode::UnsupportedFormat,
-                      fmt::format("cannot tell the output format from the extension '{}' "
-                                  "(use .wrl .obj .ply .off .stl .glb .gltf .drc)",
-                                  path.extension().string()),
+                      fmt::format("cannot tell the output format from the extension '{}' (use {})",
+                                  path.extension().string(), extension_list()),
                       source);
   if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
   const FormatInfo& fi = info(*format);

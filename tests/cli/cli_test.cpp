@@ -326,6 +326,14 @@ TEST_F(Cli, ReconstructFailsCleanlyAndWritesNothing) {
   expect_data_error({"reconstruct", path("face.ply"), "--profiles", path("out.json")},
                     {"-o", path("out.xyz")}, "cannot tell the output format", "out.xyz");
   EXPECT_EQ(files(), before);
+  // The outputs are written as a set: one that cannot be (its folder is missing) leaves none behind, the
+  // mesh and the preview named before it included.
+  const Outcome unwritable = run({"reconstruct", path("face.ply"), "-o", path("out.glb"), "--preview",
+                                  path("out.svg"), "--profiles", path("no/such/folder/out.json")});
+  EXPECT_EQ(unwritable.exit_code, 1);
+  EXPECT_NE(unwritable.err.find("error: " + path("no/such/folder/out.json")), std::string::npos)
+      << unwritable.err;
+  EXPECT_EQ(files(), before);
   for (const std::vector<std::string>& args : {std::vector<std::string>{"--resolution", "1x5"},
                                                {"--resolution", "10x10x10"},
                                                {"--scheme", "bezier"}}) {

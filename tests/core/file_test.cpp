@@ -34,6 +34,26 @@ TEST(File, AtomicWriteIntoMissingFolderFailsAndLeavesNothing) {
   EXPECT_EQ(dir.entries(), 0U);
 }
 
+TEST(File, SeveralFilesAreWrittenAsASet) {
+  test::TempDir dir;
+  const OutputFile three[] = {
+      {dir / "a.ply", "mesh"}, {dir / "b.json", "curves"}, {dir / "c.svg", "picture"}};
+  ASSERT_TRUE(write_files_atomic(three).ok());
+  EXPECT_EQ(slurp(dir / "b.json"), "curves");
+  EXPECT_EQ(dir.entries(), 3U);
+  // A failure after the first output (its folder is missing): none of them appears, nothing is left
+  // behind, and what was there stays as it was.
+  const OutputFile broken[] = {
+      {dir / "a.ply", "new mesh"}, {dir / "no" / "b.json", "x"}, {dir / "d.svg", "y"}};
+  const Result<void> r = write_files_atomic(broken);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, ErrorCode::Io);
+  EXPECT_NE(r.error().source.find("b.json"), std::string::npos) << r.error().source;
+  EXPECT_EQ(slurp(dir / "a.ply"), "mesh");
+  EXPECT_FALSE(std::filesystem::exists(dir / "d.svg"));
+  EXPECT_EQ(dir.entries(), 3U) << "no temporary file may be left";
+}
+
 TEST(File, ReadErrorsNameTheFile) {
   test::TempDir dir;
   auto missing = read_file(dir / "absent.wrl");

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iterator>
 #include <system_error>
+#include <vector>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -44,7 +45,10 @@ Result<std::string> read_file(const std::filesystem::path& path) {
   return bytes;
 }
 
-Result<void> write_file_atomic(const std::filesystem::path& path, std::string_view bytes) {
+namespace {
+
+// The bytes written to a temporary file beside `path`, closed: its name, for the rename.
+Result<std::string> write_temporary(const std::filesystem::path& path, std::string_view bytes) {
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : ".";
   std::string tmp = (dir / ("." + path.filename().string() + ".tmp-XXXXXX")).string();
   const int fd = ::mkstemp(tmp.data());
@@ -69,11 +73,36 @@ Result<void> write_file_atomic(const std::filesystem::path& path, std::string_vi
     ::unlink(tmp.c_str());
     return io_error(path, "cannot write", err);
   }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    const int err = errno;
-    ::unlink(tmp.c_str());
-    return io_error(path, "cannot write", err);
+  return tmp;
+}
+
+} // namespace
+
+Result<void> write_file_atomic(const std::filesystem::path& path, std::string_view bytes) {
+  const OutputFile one[] = {{path, std::string(bytes)}};
+  return write_files_atomic(one);
+}
+
+Result<void> write_files_atomic(std::span<const OutputFile> files) {
+  // Every file's bytes first; only when all are written does any file appear, by renames (which do not
+  // fail for want of space or permission in a folder where a temporary file was just made).
+  std::vector<std::string> temporaries;
+  for (const OutputFile& f : files) {
+    Result<std::string> tmp = write_temporary(f.path, f.bytes);
+    if (!tmp) {
+      for (const std::string& t : temporaries)
+        ::unlink(t.c_str());
+      return tmp.error();
+    }
+    temporaries.push_back(*std::move(tmp));
   }
+  for (std::size_t i = 0; i < files.size(); ++i)
+    if (std::rename(temporaries[i].c_str(), files[i].path.c_str()) != 0) {
+      const int err = errno;
+      for (std::size_t j = i; j < files.size(); ++j)
+        ::unlink(temporaries[j].c_str());
+      return io_error(files[i].path, "cannot write", err);
+    }
   return {};
 }
 

@@ -14,20 +14,13 @@
 
 namespace pdeface::pde {
 
-std::string_view to_string(Scheme scheme) noexcept {
-  switch (scheme) {
-  case Scheme::Spline: return "spline";
-  case Scheme::Paper: return "paper";
-  case Scheme::Patch4: return "patch4";
-  }
-  return "?";
-}
+std::string_view to_string(Scheme scheme) noexcept { return name_of<Scheme>(kSchemeNames, scheme); }
 
 std::optional<Scheme> scheme_from_string(std::string_view name) noexcept {
-  for (Scheme s : {Scheme::Spline, Scheme::Paper, Scheme::Patch4})
-    if (name == to_string(s)) return s;
-  return std::nullopt;
+  return value_named<Scheme>(kSchemeNames, name);
 }
+
+std::string_view to_string(Spacing spacing) noexcept { return name_of<Spacing>(kSpacingNames, spacing); }
 
 namespace {
 

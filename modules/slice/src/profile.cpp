@@ -262,14 +262,7 @@ std::array<double, 2> covered_extent(const Section& section, double seed, double
   return {cover[first][0], cover[last][1]};
 }
 
-std::string_view to_string(ReachEnd end) noexcept {
-  switch (end) {
-  case ReachEnd::Limit: return "limit";
-  case ReachEnd::SurfaceEnd: return "surface_end";
-  case ReachEnd::TurnsAway: return "turns_away";
-  }
-  return "limit";
-}
+std::string_view to_string(ReachEnd end) noexcept { return name_of<ReachEnd>(kReachEndNames, end); }
 
 std::optional<Vec3> section_at(const Section& section, const ProfileAxes& axes, double u) {
   const auto& cover = section.cover;

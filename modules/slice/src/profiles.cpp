@@ -25,16 +25,9 @@ std::size_t median(std::vector<std::size_t> v) {
 
 } // namespace
 
-std::string_view to_string(Fit fit) noexcept { return fit == Fit::Spline ? "spline" : "cosine"; }
+std::string_view to_string(Fit fit) noexcept { return name_of<Fit>(kFitNames, fit); }
 
-std::string_view to_string(Sampling sampling) noexcept {
-  switch (sampling) {
-  case Sampling::SharedHeights: return "shared_heights";
-  case Sampling::LocalHeights: return "local_heights";
-  case Sampling::Parameter: break;
-  }
-  return "parameter";
-}
+std::string_view to_string(Sampling sampling) noexcept { return name_of<Sampling>(kSamplingNames, sampling); }
 
 Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmarks& landmarks,
                                     const align::FaceFrame& frame, const ProfileOptions& options) {

@@ -78,7 +78,7 @@ bool solve_band(std::vector<std::array<double, 4>>& band, std::vector<Vec3>& rhs
 } // namespace
 
 std::string_view to_string(Parameter parameter) noexcept {
-  return parameter == Parameter::Height ? "height" : "arc_length";
+  return name_of<Parameter>(kParameterNames, parameter);
 }
 
 Spline::Spline(std::vector<Vec3> controls) : controls_(std::move(controls)) {

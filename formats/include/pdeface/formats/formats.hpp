@@ -9,7 +9,9 @@
 #include <filesystem>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace pdeface::formats {
 
@@ -33,6 +35,11 @@ struct FormatInfo {
 [[nodiscard]] const FormatInfo& info(Format format);
 //! The format an extension names (case-insensitive), if any.
 [[nodiscard]] std::optional<Format> format_from_path(const std::filesystem::path& path);
+//! The format an extension without its dot names ("ply", "GLB"). Errors: `UnsupportedFormat` listing the
+//! extensions there are.
+[[nodiscard]] Result<Format> format_from_name(std::string_view name);
+//! Every extension without its dot ("wrl", "vrml", "obj", ...), for a command line's choices.
+[[nodiscard]] std::vector<std::string> format_names();
 //! The format the first bytes identify (magic numbers and headers), if any. OBJ and STL have no magic
 //! and are only recognised by the most likely first statement.
 [[nodiscard]] std::optional<Format> format_from_content(std::string_view bytes);

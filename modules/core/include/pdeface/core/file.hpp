@@ -5,6 +5,7 @@
 #include "pdeface/core/result.hpp"
 
 #include <filesystem>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -16,6 +17,17 @@ namespace pdeface {
 //! Writes `bytes` to a temporary file beside `path`, then renames it over `path`: readers of `path` see
 //! either the old file or the complete new one, and a failure leaves nothing behind.
 [[nodiscard]] Result<void> write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
+
+//! One file of a command's output.
+struct OutputFile {
+  std::filesystem::path path;
+  std::string bytes;
+};
+
+//! Writes several files as a set: every one to a temporary file beside it first, and only when all are
+//! written, each renamed over its path. A failure while writing (a missing folder, a full disk) leaves
+//! none of them behind and no temporary file either.
+[[nodiscard]] Result<void> write_files_atomic(std::span<const OutputFile> files);
 
 //! The file name to put in error messages: the path as the user gave it.
 [[nodiscard]] inline std::string source_name(const std::filesystem::path& path) { return path.string(); }

@@ -10,10 +10,12 @@
 //! apart on grids symmetric in v, which halves it).
 
 #include "pdeface/core/mesh.hpp"
+#include "pdeface/core/names.hpp"
 #include "pdeface/core/result.hpp"
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -49,6 +51,8 @@ enum class Scheme {
   //! ~e^{m/3 − 1}/(m/3) in mode n (m = a·n·patch length): refused beyond `Options::patch4_max_amplification`.
   Patch4,
 };
+inline constexpr std::array<NamedValue<Scheme>, 3> kSchemeNames{
+    {{"spline", Scheme::Spline}, {"paper", Scheme::Paper}, {"patch4", Scheme::Patch4}}};
 [[nodiscard]] std::string_view to_string(Scheme scheme) noexcept;
 //! "spline", "paper" or "patch4"; nullopt for anything else.
 [[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view name) noexcept;
@@ -58,6 +62,9 @@ enum class Spacing {
   Uniform,  //!< curve j at U_j = j/3, as in the paper (patch k = [k, k+1] = curves 3k..3k+3)
   Physical, //!< U_j proportional to the curves' mean x, over the same range [0, (J−1)/3]
 };
+inline constexpr std::array<NamedValue<Spacing>, 2> kSpacingNames{
+    {{"physical", Spacing::Physical}, {"uniform", Spacing::Uniform}}};
+[[nodiscard]] std::string_view to_string(Spacing spacing) noexcept;
 
 struct Options {
   Scheme scheme = Scheme::Spline;

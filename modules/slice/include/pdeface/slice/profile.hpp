@@ -4,6 +4,7 @@
 //! range. Works on meshes (the polylines of `intersect`) and on point clouds (a thin slab of points).
 
 #include "pdeface/core/mesh.hpp"
+#include "pdeface/core/names.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/slice/intersect.hpp"
 
@@ -90,7 +91,8 @@ enum class ReachEnd {
   TurnsAway,  //!< the surface turns away from the viewer
 };
 
-//! "limit", "surface_end", "turns_away".
+inline constexpr std::array<NamedValue<ReachEnd>, 3> kReachEndNames{
+    {{"limit", ReachEnd::Limit}, {"surface_end", ReachEnd::SurfaceEnd}, {"turns_away", ReachEnd::TurnsAway}}};
 [[nodiscard]] std::string_view to_string(ReachEnd end) noexcept;
 
 struct Reach {

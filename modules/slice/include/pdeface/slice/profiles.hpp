@@ -37,6 +37,13 @@ enum class Sampling {
   //! point k at nearly the same height (no shear between them) while curves far apart may differ.
   LocalHeights,
 };
+//! "local_heights" (or "local"), "parameter", "shared_heights" (or "shared").
+inline constexpr std::array<NamedValue<Sampling>, 5> kSamplingNames{
+    {{"local_heights", Sampling::LocalHeights},
+     {"local", Sampling::LocalHeights},
+     {"parameter", Sampling::Parameter},
+     {"shared_heights", Sampling::SharedHeights},
+     {"shared", Sampling::SharedHeights}}};
 [[nodiscard]] std::string_view to_string(Sampling sampling) noexcept;
 
 //! How the K samples of a curve are made from its profile.
@@ -48,6 +55,7 @@ enum class Fit {
   //! approximates the spline between the samples.
   Spline,
 };
+inline constexpr std::array<NamedValue<Fit>, 2> kFitNames{{{"cosine", Fit::Cosine}, {"spline", Fit::Spline}}};
 [[nodiscard]] std::string_view to_string(Fit fit) noexcept;
 
 struct ProfileOptions {

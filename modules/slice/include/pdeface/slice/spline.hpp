@@ -3,8 +3,10 @@
 //! Least-squares cubic B-spline fitting of a profile, and its resampling to K points.
 
 #include "pdeface/core/mesh.hpp"
+#include "pdeface/core/names.hpp"
 #include "pdeface/core/result.hpp"
 
+#include <array>
 #include <span>
 #include <vector>
 
@@ -16,6 +18,9 @@ enum class Parameter {
   Height,    //!< normalised height (`SplineOptions::along`): equal t is equal height on every curve
 };
 
+//! "arc_length" (or "arc") and "height".
+inline constexpr std::array<NamedValue<Parameter>, 3> kParameterNames{
+    {{"arc_length", Parameter::ArcLength}, {"arc", Parameter::ArcLength}, {"height", Parameter::Height}}};
 [[nodiscard]] std::string_view to_string(Parameter parameter) noexcept;
 
 struct SplineOptions {

@@ -1,0 +1,127 @@
+#include "common.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdio>
+
+namespace pdeface::cli {
+
+void print_notes(Notes& notes) {
+  for (const std::string& note : notes)
+    fmt::print(stderr, "pdeface: note: {}\n", note);
+  notes.clear();
+}
+
+int fail(const Error& error) {
+  fmt::print(stderr, "pdeface: error: {}\n", error.to_string());
+  return kDataError;
+}
+
+Result<formats::LoadedMesh> read_scan(const std::filesystem::path& in) {
+  Notes notes;
+  Result<formats::LoadedMesh> scan = formats::read_mesh(in, {}, &notes);
+  print_notes(notes);
+  return scan;
+}
+
+Result<align::LandmarkSource> landmark_source(const std::filesystem::path& file) {
+  if (file.empty()) return align::LandmarkSource{};
+  Result<std::string> bytes = read_file(file);
+  if (!bytes) return bytes.error();
+  return align::LandmarkSource{*std::move(bytes), file.string()};
+}
+
+Result<void> write_outputs(std::span<const OutputFile> files) { return write_files_atomic(files); }
+
+void add_input(CLI::App* cmd, std::filesystem::path& in, const std::string& description) {
+  cmd->add_option("input", in, description)->required()->check(CLI::ExistingFile);
+}
+
+void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
+  cmd->add_option("--draco-bits", write.draco_bits, "Draco position quantisation bits (1..24)")
+      ->check(CLI::Range(1, 24))
+      ->capture_default_str();
+  cmd->add_option("--draco-level", write.draco_level, "Draco compression level (0..10; 0 keeps vertex order)")
+      ->check(CLI::Range(0, 10))
+      ->capture_default_str();
+  cmd->add_flag("--draco", write.draco_in_gltf, "GLB output: compress with KHR_draco_mesh_compression");
+  cmd->add_flag("--ascii", write.ascii, "PLY and STL output: ASCII instead of binary");
+}
+
+void CurveArgs::add_to(CLI::App* cmd, bool with_landmarks) {
+  if (with_landmarks)
+    cmd->add_option("--landmarks", landmarks,
+                    "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
+        ->check(CLI::ExistingFile);
+  CLI::Option* ratio = cmd->add_option("--ratio", options.ratio,
+                                       "Sampling ratio: K = ratio x 300 reference points (0.05..0.6)")
+                           ->check(CLI::Range(slice::kMinRatio, slice::kMaxRatio))
+                           ->capture_default_str();
+  cmd->add_option("--points", points, "Points per curve K, instead of the ratio (>= 4)")
+      ->check(CLI::Range(std::size_t{4}, pde::max_samples))
+      ->excludes(ratio);
+  cmd->add_option("--curves", options.planes.curves,
+                  "Number of curves: 3 x patches + 1, odd patches (4, 10, 16, 22, 28, ...)")
+      ->capture_default_str();
+  cmd->add_option("--parameter", parameter, "Spline parameter: arc (length) or height")
+      ->check(one_of<slice::Parameter>(slice::kParameterNames))
+      ->capture_default_str();
+  cmd->add_option(
+         "--sampling", sampling,
+         "Where the K points go: local (at the heights the curves near each one share), parameter "
+         "(evenly in each curve's own arc length) or shared (the same relative heights on every curve)")
+      ->check(one_of<slice::Sampling>(slice::kSamplingNames))
+      ->capture_default_str();
+  cmd->add_option("--fit", fit,
+                  "How the K points are made: cosine (the least-squares fit the PDE surface can draw) or "
+                  "spline (a least-squares cubic spline, sampled)")
+      ->check(one_of<slice::Fit>(slice::kFitNames))
+      ->capture_default_str();
+  cmd->add_option("--max-gap", options.max_hole_mm,
+                  "Longest hole filled along a curve, mm (default: a quarter of the face's height)")
+      ->check(CLI::Range(0.0, 200.0));
+}
+
+slice::ProfileOptions CurveArgs::profile_options() const {
+  slice::ProfileOptions o = options;
+  o.points = points;
+  o.parameter = named<slice::Parameter>(slice::kParameterNames, parameter);
+  o.sampling = named<slice::Sampling>(slice::kSamplingNames, sampling);
+  o.fit = named<slice::Fit>(slice::kFitNames, fit);
+  return o;
+}
+
+void SurfaceArgs::add_to(CLI::App* cmd, bool with_scheme) {
+  if (with_scheme)
+    cmd->add_option("--scheme", scheme,
+                    "spline (C2 through every curve), paper (the paper's patches) or patch4 (four positions "
+                    "per patch, refused where unstable)")
+        ->check(one_of<pde::Scheme>(pde::kSchemeNames))
+        ->capture_default_str();
+  cmd->add_option("--modes", options.modes, "Fourier modes N (default: all, K - 1)");
+  cmd->add_option("--smoothing", options.smoothing,
+                  "Smoothing parameter a (default: isotropic, pi W / L; 1 as in the paper)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--spacing", spacing,
+                  "Curve positions in u: physical (by the planes' spacing) or uniform (the paper)")
+      ->check(one_of<pde::Spacing>(pde::kSpacingNames))
+      ->capture_default_str();
+}
+
+pde::Options SurfaceArgs::pde_options() const {
+  pde::Options o = options;
+  o.scheme = named<pde::Scheme>(pde::kSchemeNames, scheme);
+  o.spacing = named<pde::Spacing>(pde::kSpacingNames, spacing);
+  return o;
+}
+
+void print_holes_and_gaps(const slice::ProfileSet& set) {
+  if (set.holes() > 0)
+    fmt::print(stderr,
+               "pdeface: note: {} holes filled ({:.1f} % of the curves' length, the longest {:.1f} mm)\n",
+               set.holes(), 100.0 * set.filled_fraction, set.longest_hole_mm());
+  for (const std::string& m : set.missing)
+    fmt::print(stderr, "pdeface: note: missing from the scan: {}\n", m);
+}
+
+} // namespace pdeface::cli

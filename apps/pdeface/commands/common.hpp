@@ -1,0 +1,88 @@
+#pragma once
+// What the commands share: exit codes, how notes and errors are printed, reading the inputs, writing the
+// outputs as a set, and the options several commands take.
+
+#include "pdeface/align/pipeline.hpp"
+#include "pdeface/compare/reconstruct.hpp"
+#include "pdeface/core/file.hpp"
+#include "pdeface/core/names.hpp"
+#include "pdeface/formats/formats.hpp"
+#include "pdeface/pde/surface.hpp"
+#include "pdeface/slice/profiles.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pdeface::cli {
+
+namespace fs = std::filesystem;
+
+inline constexpr int kDataError = 1;  // the input or output could not be read, converted or written
+inline constexpr int kUsageError = 2; // the command line itself is wrong
+
+//! A command: adds its subcommand to `app`; when that is the one given, runs it and sets `status`.
+using Command = void (*)(CLI::App& app, int& status);
+void info_command(CLI::App& app, int& status);
+void convert_command(CLI::App& app, int& status);
+void sample_command(CLI::App& app, int& status);
+void align_command(CLI::App& app, int& status);
+void profiles_command(CLI::App& app, int& status);
+void reconstruct_command(CLI::App& app, int& status);
+void table_command(CLI::App& app, int& status);
+
+//! Prints the notes collected so far and forgets them, so that the next step's are printed once.
+void print_notes(Notes& notes);
+//! Prints the error as one line on stderr; the data-error exit status.
+int fail(const Error& error);
+
+//! A mesh read from a file, its notes printed.
+[[nodiscard]] Result<formats::LoadedMesh> read_scan(const std::filesystem::path& in);
+//! A landmark file's bytes (none when `file` is empty: detect them).
+[[nodiscard]] Result<align::LandmarkSource> landmark_source(const std::filesystem::path& file);
+//! The outputs of a command, written as a set (none if any fails).
+[[nodiscard]] Result<void> write_outputs(std::span<const OutputFile> files);
+
+//! A choice among an enum's names (aliases too).
+template <class E> CLI::IsMember one_of(std::span<const NamedValue<E>> names) {
+  return CLI::IsMember(all_names(names));
+}
+//! The value a name the command line accepted (`one_of`) stands for.
+template <class E> E named(std::span<const NamedValue<E>> names, const std::string& name) {
+  return value_named(names, name).value();
+}
+
+void add_input(CLI::App* cmd, std::filesystem::path& in, const std::string& description);
+void add_write_options(CLI::App* cmd, formats::WriteOptions& write);
+
+//! How a scan becomes curves: landmarks given or detected, and the slicing options.
+struct CurveArgs {
+  std::filesystem::path landmarks; // given landmarks instead of detection
+  std::string parameter = "arc";
+  std::string sampling = "local";
+  std::string fit = "cosine";
+  std::optional<std::size_t> points;
+  slice::ProfileOptions options;
+
+  void add_to(CLI::App* cmd, bool with_landmarks = true);
+  [[nodiscard]] slice::ProfileOptions profile_options() const;
+};
+
+//! How curves become a surface.
+struct SurfaceArgs {
+  std::string scheme = "spline";
+  std::string spacing = "physical";
+  pde::Options options;
+
+  void add_to(CLI::App* cmd, bool with_scheme = true);
+  [[nodiscard]] pde::Options pde_options() const;
+};
+
+//! What slicing filled and what the scan lacks, as notes on stderr.
+void print_holes_and_gaps(const slice::ProfileSet& set);
+
+} // namespace pdeface::cli

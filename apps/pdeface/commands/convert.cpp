@@ -1,0 +1,56 @@
+// pdeface convert: any readable format to any writable one
+
+#include "common.hpp"
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include <cstdio>
+
+namespace pdeface::cli {
+namespace {
+
+struct ConvertRequest {
+  fs::path in;
+  fs::path out;
+  std::string from;
+  std::string to;
+  formats::WriteOptions write;
+};
+
+int run_convert(ConvertRequest request) {
+  formats::ReadOptions read;
+  for (auto [name, format] : {std::pair{&request.from, &read.format}, {&request.to, &request.write.format}}) {
+    if (name->empty()) continue;
+    Result<formats::Format> parsed = formats::format_from_name(*name);
+    if (!parsed) return fail(parsed.error());
+    *format = *parsed;
+  }
+  Notes notes;
+  Result<formats::ConvertReport> report =
+      formats::convert(request.in, request.out, read, request.write, &notes);
+  print_notes(notes);
+  if (!report) return fail(report.error());
+  fmt::print("{} ({}, {} bytes) -> {} ({}, {} bytes): {} vertices, {} triangles\n", request.in.string(),
+             formats::info(report->from).name, report->bytes_in, request.out.string(),
+             formats::info(report->to).name, report->bytes_out, report->vertices, report->triangles);
+  return 0;
+}
+
+} // namespace
+
+void convert_command(CLI::App& app, int& status) {
+  auto request = std::make_shared<ConvertRequest>();
+  ConvertRequest& r = *request;
+  CLI::App* cmd =
+      app.add_subcommand("convert", "Convert between formats chosen by extension: ." +
+                                        fmt::format("{}", fmt::join(formats::format_names(), " .")));
+  add_input(cmd, r.in, "File to read");
+  cmd->add_option("output", r.out, "File to write (replaced atomically)")->required();
+  cmd->add_option("--from", r.from, "Input format when the extension is misleading (e.g. ply)");
+  cmd->add_option("--to", r.to, "Output format when the extension is misleading (e.g. glb)");
+  add_write_options(cmd, r.write);
+  cmd->callback([request, &status] { status = run_convert(*request); });
+}
+
+} // namespace pdeface::cli
