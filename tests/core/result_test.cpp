@@ -60,7 +60,8 @@ TEST(Location, LineAndColumnOfAByteOffset) {
   EXPECT_EQ(at(3), (std::pair<std::uint64_t, std::uint64_t>{2, 1}));
   EXPECT_EQ(at(5), (std::pair<std::uint64_t, std::uint64_t>{2, 3}));
   EXPECT_EQ(at(8), (std::pair<std::uint64_t, std::uint64_t>{4, 1}));
-  EXPECT_EQ(at(100), (std::pair<std::uint64_t, std::uint64_t>{4, 2})); // past the end: just after the last byte
+  EXPECT_EQ(at(100),
+            (std::pair<std::uint64_t, std::uint64_t>{4, 2})); // past the end: just after the last byte
 }
 
 } // namespace

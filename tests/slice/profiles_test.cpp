@@ -135,9 +135,10 @@ TEST(Profiles, SamplingsLineUpPointKAsAsked) {
   EXPECT_LT(neighbour_spread(*set), 0.001);
   EXPECT_LT(neighbour_spread(*local), 0.7 * neighbour_spread(*alone));
   EXPECT_GT(neighbour_spread(*own), 0.001);
-  std::printf("point k of neighbouring curves, mean relative height apart: shared %.4f, local %.4f, each alone "
-              "%.4f, own parameter %.4f\n",
-              neighbour_spread(*set), neighbour_spread(*local), neighbour_spread(*alone), neighbour_spread(*own));
+  std::printf(
+      "point k of neighbouring curves, mean relative height apart: shared %.4f, local %.4f, each alone "
+      "%.4f, own parameter %.4f\n",
+      neighbour_spread(*set), neighbour_spread(*local), neighbour_spread(*alone), neighbour_spread(*own));
 }
 
 TEST(Profiles, EvaluationProfilesLieInTheirPlanes) {
@@ -237,9 +238,15 @@ TEST(Profiles, HolesAreFilledFromTheCurveAndItsNeighbours) {
   };
   for (const ProfileCurve& c : set->curves) {
     // Curves well inside a hole have it, curves clear of both have none (the cut's edge is ragged).
-    if (std::abs(c.x + 17.0) < 12.0) EXPECT_TRUE(in_hole(c, 50.0)) << c.feature;
-    if (std::abs(c.x) < 16.0) EXPECT_TRUE(in_hole(c, -30.5)) << c.feature;
-    if (std::abs(c.x + 17.0) > 16.0 && std::abs(c.x) > 19.0) EXPECT_TRUE(c.holes.empty()) << c.feature;
+    if (std::abs(c.x + 17.0) < 12.0) {
+      EXPECT_TRUE(in_hole(c, 50.0)) << c.feature;
+    }
+    if (std::abs(c.x) < 16.0) {
+      EXPECT_TRUE(in_hole(c, -30.5)) << c.feature;
+    }
+    if (std::abs(c.x + 17.0) > 16.0 && std::abs(c.x) > 19.0) {
+      EXPECT_TRUE(c.holes.empty()) << c.feature;
+    }
     for (const auto& h : c.holes)
       EXPECT_LT(h[1] - h[0], 31.0);
     // The filled points lie near the face the holes took away (they cannot know its lips and brow): the

@@ -29,7 +29,8 @@ Location Location::in_text(std::string_view text, std::uint64_t offset) {
   const std::string_view before = text.substr(0, std::min<std::uint64_t>(offset, text.size()));
   const std::size_t last_newline = before.rfind('\n');
   const auto line = static_cast<std::uint64_t>(std::ranges::count(before, '\n')) + 1;
-  const std::uint64_t column = before.size() - (last_newline == std::string_view::npos ? 0 : last_newline + 1) + 1;
+  const std::uint64_t column =
+      before.size() - (last_newline == std::string_view::npos ? 0 : last_newline + 1) + 1;
   return at_line(line, column);
 }
 

@@ -51,5 +51,4 @@ struct Decoded {
 //! geometry data"; messages longer than 300 characters are cut (tinygltf quotes whole data URIs).
 [[nodiscard]] std::string message_text(std::string message);
 
-
 } // namespace pdeface::draco::detail
