@@ -11,6 +11,7 @@
 
 #include "pdeface/align/frame.hpp"
 #include "pdeface/align/landmarks.hpp"
+#include "pdeface/core/geometry.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 
@@ -26,11 +27,8 @@ struct DetectOptions {
   double min_fragment = 0.02;   //!< mesh pieces with fewer vertices than this fraction are ignored
 };
 
-//! A plane n · p = offset, in the scan's frame and units.
-struct Plane {
-  Vec3 normal = Vec3::UnitX();
-  double offset = 0.0;
-};
+//! A plane n · p = offset (`pdeface::Plane`), in the scan's frame and units.
+using Plane = pdeface::Plane;
 
 //! What detection found, and how sure it is.
 struct Detection {

@@ -7,7 +7,7 @@
 //! so the two triangles that share it produce one point. For axis-aligned planes (`normal` a unit axis)
 //! the signed distances are exact and every point lies exactly on the plane.
 
-#include "pdeface/align/detect.hpp" // align::Plane
+#include "pdeface/core/geometry.hpp"
 #include "pdeface/core/mesh.hpp"
 
 #include <span>
@@ -16,13 +16,10 @@
 namespace pdeface::slice {
 
 //! A plane n · p = offset (n of unit length).
-using Plane = align::Plane;
+using Plane = pdeface::Plane;
 
 //! A connected piece of a plane's intersection with a mesh.
-struct Polyline {
-  std::vector<Vec3> points;
-  bool closed = false; //!< the last point joins the first (not repeated)
-};
+using Polyline = pdeface::Polyline;
 
 //! The intersection of `mesh` with one plane, in any orientation. Triangles lying in the plane add
 //! nothing themselves; their edges come from the neighbours that leave the plane. A mesh edge lying in
