@@ -1,13 +1,25 @@
 # pdeface_add_library(<name> SOURCES ... [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
-# Defines pdeface_<name> with the alias pdeface::<name>; headers live in include/pdeface/<name>/.
+# Defines pdeface_<name> with the alias pdeface::<name> (exported as pdeface::<name> too); headers live in
+# include/pdeface/<name>/ and are installed with it.
 function(pdeface_add_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC_DEPS;PRIVATE_DEPS" ${ARGN})
   add_library(pdeface_${name} ${ARG_SOURCES})
   add_library(pdeface::${name} ALIAS pdeface_${name})
   target_include_directories(pdeface_${name} PUBLIC
-    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include>)
+    $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:include>)
   target_link_libraries(pdeface_${name} PUBLIC ${ARG_PUBLIC_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
   pdeface_warnings(pdeface_${name})
+  pdeface_install(pdeface_${name} ${name})
+  install(DIRECTORY include/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+endfunction()
+
+# pdeface_install(<target> <export name>): the target in the package's export set (pdeface::<export name>),
+# without headers: internal targets that the installed libraries link (their headers stay private).
+function(pdeface_install target export_name)
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${export_name})
+  install(TARGETS ${target} EXPORT pdefaceTargets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  set_property(GLOBAL APPEND PROPERTY PDEFACE_LIBRARIES ${target})
 endfunction()
 
 # Warnings for our own code (third-party headers come in as SYSTEM includes and stay quiet).
