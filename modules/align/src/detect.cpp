@@ -603,7 +603,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     Plane plane;
   };
   std::vector<Local> locals;
-  {
+  const auto find_locals = [&] {
     std::vector<std::pair<double, Extreme>> pointed;
     for (const Extreme& e : extreme_places(extreme_points(scene, 600), 1.0 / mid, 1000))
       if (const double fall = fall_around(scene, e.point, e.direction, 1.0 / mid); fall >= 5.0)
@@ -611,15 +611,14 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     std::ranges::sort(pointed, std::greater{}, &std::pair<double, Extreme>::first);
     for (const auto& [fall, e] : pointed) {
       if (locals.size() == 10) break;
-      if (const std::optional<Plane> plane = local_plane(scene, e.point, e.direction, 1.0 / mid)) {
+      if (const std::optional<Plane> plane = local_plane(scene, e.point, e.direction, 1.0 / mid))
         locals.push_back({e, *plane});
-      }
     }
-  }
+  };
 
   double best_prominence = 0.0;
   std::vector<Hypothesis> quick;
-  const auto try_scale = [&](double mm) {
+  const auto try_scale = [&](double mm, bool on_planes, bool on_locals) {
     const double unit = 1.0 / mm;
     const double slab = std::max(1.0 * unit, 0.6 * scene.spacing);
     std::vector<Candidate> seeds;
@@ -633,10 +632,10 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
         return;
       seeds.push_back({plane, nose, 0.0});
     };
-    for (const Plane& plane : planes)
+    for (const Plane& plane : on_planes ? std::span<const Plane>(planes) : std::span<const Plane>())
       for (const Nose& nose : find_noses(plane, profile_of(scene, plane, slab, unit), unit, 3))
         add(plane, nose);
-    for (const Local& l : locals) {
+    for (const Local& l : on_locals ? std::span<const Local>(locals) : std::span<const Local>()) {
       const auto noses =
           find_noses(l.plane, profile_of(scene, l.plane, slab, unit, &l.place.point, 40.0 * unit), unit, 1,
                      &l.place.direction);
@@ -657,21 +656,26 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       quick.push_back(std::move(h));
     }
   };
-  // First the scale the bounding box suggests (`detect_units`: right for a face scan in mm, cm or m).
-  // When a face is found there, symmetric, whose landmarks sit on the average face and say the same
-  // unit, the other scales are not tried; else all are (a bust, a head, units of no rule).
-  bool settled = false;
-  if (!fixed_scale) {
-    const Units guess = detect_units(scene.mesh);
-    try_scale(millimetres_per(guess));
-    settled = std::ranges::any_of(quick, [&](const Hypothesis& h) {
+  // Cheapest first, and no further than needed: the scan's own symmetry planes at the scale the file
+  // states or the bounding box suggests (`detect_units`: right for a face scan in mm, cm or m); then the
+  // local planes around its pointed places (a face turned on its shoulders, a bust); then every candidate
+  // scale (a bust, a head, units of no rule). Each stops when a face is found: symmetric, its landmarks
+  // on the average face, and (when the scale was a guess) saying the same unit.
+  const double first = fixed_scale ? scales.front() : millimetres_per(detect_units(scene.mesh));
+  const auto found_a_face = [&] {
+    return std::ranges::any_of(quick, [&](const Hypothesis& h) {
       return h.verified.shape_rms < kFaceShapeMm && h.candidate.rms_mm < kFaceSymmetryMm &&
-             snap_units(h.verified.mm_per_unit) == guess;
+             (fixed_scale || snap_units(h.verified.mm_per_unit) == snap_units(first));
     });
+  };
+  try_scale(first, true, false);
+  if (!found_a_face()) {
+    find_locals();
+    try_scale(first, false, true);
   }
-  if (!settled)
+  if (!fixed_scale && !found_a_face())
     for (const double mm : scales)
-      try_scale(mm);
+      try_scale(mm, true, true);
   std::ranges::sort(quick, std::greater{}, &Hypothesis::rank);
   std::vector<Hypothesis> hypotheses;
   for (const Hypothesis& q : quick) {
