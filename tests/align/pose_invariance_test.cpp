@@ -56,7 +56,7 @@ TEST_P(PoseInvarianceReal, RealScan) {
 
 INSTANTIATE_TEST_SUITE_P(SharedFaces, PoseInvarianceReal,
                          ::testing::Values("facefuns_f18.ply", "facefuns_f56_points.ply", "james.obj",
-                                           "ict_07.wrl", "stfaces_neutral.wrl"),
+                                           "ict_07.wrl", "stfaces_neutral.wrl", "fran_cut.wrl"),
                          test::FileParamName());
 
 } // namespace

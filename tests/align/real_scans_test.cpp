@@ -34,7 +34,8 @@ TEST_P(RealScan, IsFoundWithConfidence) {
 
 INSTANTIATE_TEST_SUITE_P(SharedFaces, RealScan,
                          ::testing::Values("facefuns_f18.ply", "facefuns_m66.ply", "facefuns_f56_points.ply",
-                                           "facefuns_m46.drc", "james.obj", "stfaces_neutral.wrl"),
+                                           "facefuns_m46.drc", "james.obj", "stfaces_neutral.wrl",
+                                           "fran_cut.wrl", "bust_man_wreath.obj"),
                          test::FileParamName());
 
 TEST(RealScan, JamesAgainstHandPlacedLandmarks) {

@@ -141,16 +141,23 @@ DepthMap DepthMap::smoothed(double sigma) const {
   // Separable blur of z·known and of known, then their ratio: unknown cells do not pull depths to zero.
   const Eigen::MatrixXd mask = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : 1.0; });
   const Eigen::MatrixXd values = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+  // Separable, a shifted block at a time (whole columns: Eigen's storage order, so it vectorises).
   auto blur = [&](const Eigen::MatrixXd& in) {
-    Eigen::MatrixXd rows_done = Eigen::MatrixXd::Zero(in.rows(), in.cols());
-    for (Eigen::Index r = 0; r < in.rows(); ++r)
-      for (int k = -reach; k <= reach; ++k)
-        for (Eigen::Index c = std::max<Eigen::Index>(0, -k); c < in.cols() && c + k < in.cols(); ++c)
-          rows_done(r, c) += kernel[static_cast<std::size_t>(k + reach)] * in(r, c + k);
-    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(in.rows(), in.cols());
-    for (int k = -reach; k <= reach; ++k)
-      for (Eigen::Index r = std::max<Eigen::Index>(0, -k); r < in.rows() && r + k < in.rows(); ++r)
-        out.row(r) += kernel[static_cast<std::size_t>(k + reach)] * rows_done.row(r + k);
+    const Eigen::Index rows = in.rows(), cols = in.cols();
+    Eigen::MatrixXd across = Eigen::MatrixXd::Zero(rows, cols);
+    for (int k = -reach; k <= reach; ++k) {
+      const Eigen::Index n = cols - std::abs(k);
+      if (n <= 0) continue;
+      across.middleCols(std::max(0, -k), n) +=
+          kernel[static_cast<std::size_t>(k + reach)] * in.middleCols(std::max(0, k), n);
+    }
+    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(rows, cols);
+    for (int k = -reach; k <= reach; ++k) {
+      const Eigen::Index n = rows - std::abs(k);
+      if (n <= 0) continue;
+      out.middleRows(std::max(0, -k), n) +=
+          kernel[static_cast<std::size_t>(k + reach)] * across.middleRows(std::max(0, k), n);
+    }
     return out;
   };
   const Eigen::MatrixXd weight = blur(mask);

@@ -28,6 +28,10 @@ using detail::Similarity;
 // units per face millimetre) turns them into the scan's units.
 constexpr double kMinNoseProminence = 8.0; // a nose tip stands 15-30 mm out of its profile
 constexpr double kMissing = 30.0;          // how far off a landmark not found counts
+constexpr double kFaceShapeMm = 9.5;       // landmarks this close to the average face's: a face (shape cue 1)
+constexpr double kFaceSymmetryMm = 2.0;    // a central face this symmetric: a face (symmetry cue 1)
+constexpr double kMinEyeHollow = 0.5;      // eye sockets at least this deep (real faces 2.5-7.6 mm, convex
+                                           // objects none: a capped cylinder's "eyes" -0.3 mm)
 
 double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 
@@ -80,19 +84,43 @@ struct Nose {
   double prominence = 0.0; // face mm
 };
 
-// The scan's points within `slab` of the plane (and within `reach` of `near` when given).
-std::vector<Vec3> profile_of(const Scene& s, const Plane& plane, double slab, const Vec3* near = nullptr,
-                             double reach = 0.0) {
+// The symmetry profile: the plane's section of the mesh, every triangle it cuts giving the segment across
+// it, sampled at most `step` apart, so that the profile is whole and lies on the plane whatever the
+// mesh's spacing (the vertices within a slab around the plane thin out on a coarse scan to one every few
+// rows, miss the nose tip and leave gaps where the windows of `find_noses` look). A point cloud has no
+// triangles: its points within `slab` of the plane. Within `reach` of `near` when given.
+std::vector<Vec3> profile_of(const Scene& s, const Plane& plane, double slab, double step,
+                             const Vec3* near = nullptr, double reach = 0.0) {
   std::vector<Vec3> out;
-  const auto take = [&](const Vec3& p) {
-    if (std::abs(plane.normal.dot(p) - plane.offset) <= slab) out.push_back(p);
-  };
-  if (near)
-    for (const auto& n : s.index->within(*near, reach))
-      take(s.mesh.positions[n.index]);
-  else
-    for (const Vec3& p : s.mesh.positions)
-      take(p);
+  const auto side = [&](const Vec3& p) { return plane.normal.dot(p) - plane.offset; };
+  if (s.mesh.triangles.empty()) {
+    const auto take = [&](const Vec3& p) {
+      if (std::abs(side(p)) <= slab) out.push_back(p);
+    };
+    if (near)
+      for (const auto& n : s.index->within(*near, reach))
+        take(s.mesh.positions[n.index]);
+    else
+      for (const Vec3& p : s.mesh.positions)
+        take(p);
+    return out;
+  }
+  const double reach2 = reach * reach;
+  for (const Triangle& t : s.mesh.triangles) {
+    const std::array<Vec3, 3> v{s.mesh.positions[t[0]], s.mesh.positions[t[1]], s.mesh.positions[t[2]]};
+    if (near && (v[0] - *near).squaredNorm() > reach2) continue;
+    const std::array<double, 3> h{side(v[0]), side(v[1]), side(v[2])};
+    std::array<Vec3, 2> cut;
+    int n = 0;
+    for (int k = 0; k < 3 && n < 2; ++k) {
+      const int j = (k + 1) % 3;
+      if ((h[k] >= 0.0) != (h[j] >= 0.0)) cut[n++] = v[k] + h[k] / (h[k] - h[j]) * (v[j] - v[k]);
+    }
+    if (n < 2) continue;
+    const int pieces = std::max(1, static_cast<int>(std::ceil((cut[1] - cut[0]).norm() / step)));
+    for (int i = 0; i <= pieces; ++i)
+      out.push_back(cut[0] + (static_cast<double>(i) / pieces) * (cut[1] - cut[0]));
+  }
   return out;
 }
 
@@ -107,26 +135,34 @@ std::vector<Nose> find_noses(const Plane& plane, std::span<const Vec3> profile, 
   if (profile.size() < 20) return found;
   const Vec3 b1 = plane.normal.unitOrthogonal();
   const Vec3 b2 = plane.normal.cross(b1);
+  // The profile in the plane's coordinates (face mm): d = (cos, sin), lateral = normal × d = (-sin, cos).
+  std::vector<Eigen::Vector2d> flat;
+  flat.reserve(profile.size());
+  for (const Vec3& p : profile)
+    flat.emplace_back(b1.dot(p) / unit, b2.dot(p) / unit);
   for (int step = 0; step < 180; ++step) {
     const double theta = 2.0 * std::numbers::pi * step / 180.0;
-    const Vec3 d = std::cos(theta) * b1 + std::sin(theta) * b2;
+    const Eigen::Vector2d d2(std::cos(theta), std::sin(theta)), lateral2(-d2.y(), d2.x());
+    const Vec3 d = d2.x() * b1 + d2.y() * b2;
     if (towards && d.dot(*towards) < std::cos(0.7)) continue; // only about the way given
     const Vec3 lateral = plane.normal.cross(d);
-    const Vec3& tip = *std::ranges::max_element(profile, {}, [&](const Vec3& p) { return d.dot(p); });
-    // How far the profile falls back from the tip at lateral offsets in [lo, hi] on one side: the
-    // least depth among those points within 30 mm behind the tip. +inf when there are none (an end of
-    // the profile, or a curve turning away).
-    auto nearest_depth = [&](double lo, double hi, double side) {
-      double drop = std::numeric_limits<double>::infinity();
-      for (const Vec3& q : profile) {
-        const double l = side * lateral.dot(q - tip) / unit;
-        const double behind = d.dot(tip - q) / unit;
-        if (l >= lo && l <= hi && behind <= 30.0) drop = std::min(drop, behind);
-      }
-      return drop;
-    };
-    const double far_plus = nearest_depth(12.0, 18.0, 1.0), far_minus = nearest_depth(12.0, 18.0, -1.0);
-    const double near_plus = nearest_depth(3.0, 7.0, 1.0), near_minus = nearest_depth(3.0, 7.0, -1.0);
+    const auto top = std::ranges::max_element(flat, {}, [&](const Eigen::Vector2d& p) { return d2.dot(p); });
+    const Eigen::Vector2d tip2 = *top;
+    const Vec3& tip = profile[static_cast<std::size_t>(top - flat.begin())];
+    // How far the profile falls back from the tip at lateral offsets of 3-7 mm (near) and 12-18 mm (far)
+    // on either side: the least depth among those points within 30 mm behind the tip. +inf when there
+    // are none (an end of the profile, or a curve turning away).
+    double far_plus = std::numeric_limits<double>::infinity(), far_minus = far_plus;
+    double near_plus = far_plus, near_minus = far_plus;
+    for (const Eigen::Vector2d& q : flat) {
+      const double behind = d2.dot(tip2 - q);
+      if (behind > 30.0) continue;
+      const double l = lateral2.dot(q - tip2), a = std::abs(l);
+      if (a >= 12.0 && a <= 18.0)
+        (l > 0 ? far_plus : far_minus) = std::min(l > 0 ? far_plus : far_minus, behind);
+      else if (a >= 3.0 && a <= 7.0)
+        (l > 0 ? near_plus : near_minus) = std::min(l > 0 ? near_plus : near_minus, behind);
+    }
     if (!std::isfinite(far_plus + far_minus + near_plus + near_minus)) continue; // an end of the profile
     if (near_plus + near_minus > 0.6 * (far_plus + far_minus) + 1.0) continue;   // a spike, not a nose
     const Nose nose{tip, d, far_plus < far_minus ? lateral : Vec3(-lateral), far_plus + far_minus};
@@ -268,30 +304,38 @@ double fall_around(const Scene& s, const Vec3& tip, const Vec3& d, double unit) 
 }
 
 // The symmetry plane of the scan around an extreme point: planes through it that contain its direction,
-// every 10°, scored by how well the central face (70 mm around) matches its mirror image; the best two
-// registered.
+// every 10°, scored by how well the central face (70 mm around) matches its mirror image; the best three
+// local minima of that score over the angle registered (a head is round: the plane across the face
+// through the nose can score as well as the face's own before registration, so one seed is not enough).
 std::optional<Plane> local_plane(const Scene& s, const Vec3& tip, const Vec3& d, double unit) {
   const std::vector<Vec3> around = patch(s, tip, 70.0 * unit, 3.0 * unit);
   if (around.size() < 50) return std::nullopt;
   const std::vector<Vec3> probe = detail::thin(around, 200);
   const std::vector<Vec3> fit = detail::thin(around, 600);
   const Vec3 e1 = d.unitOrthogonal(), e2 = d.cross(e1);
-  std::vector<std::pair<double, Vec3>> scored;
-  for (int k = 0; k < 18; ++k) {
-    const double phi = std::numbers::pi * k / 18.0;
+  constexpr int kAngles = 18;
+  std::array<std::pair<double, Vec3>, kAngles> scored;
+  for (int k = 0; k < kAngles; ++k) {
+    const double phi = std::numbers::pi * k / kAngles;
     const Vec3 n = std::cos(phi) * e1 + std::sin(phi) * e2;
-    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(tip)}), probe, *s.index), n);
+    scored[static_cast<std::size_t>(k)] = {mirror_rms(mirror_of({n, n.dot(tip)}), probe, *s.index), n};
   }
-  std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
+  std::vector<std::pair<double, Vec3>> seeds; // the local minima over the angle (which wraps at 180°)
+  for (std::size_t k = 0; k < kAngles; ++k)
+    if (scored[k].first <= scored[(k + 1) % kAngles].first &&
+        scored[k].first <= scored[(k + kAngles - 1) % kAngles].first)
+      seeds.push_back(scored[k]);
+  std::ranges::sort(seeds, {}, &std::pair<double, Vec3>::first);
+  if (seeds.size() > 3) seeds.resize(3);
   std::optional<std::pair<double, Plane>> best;
-  for (std::size_t k = 0; k < 2; ++k) {
-    const Vec3& n = scored[k].second;
+  for (const auto& [score, n] : seeds) {
     const Mirror m =
         refine(mirror_of({n, n.dot(tip)}), fit, s.mesh.positions, *s.index, 0.8, 20, 1e-3 * unit);
     const Plane plane = plane_of(m, fit);
     const double rms = mirror_rms(mirror_of(plane), probe, *s.index);
     if (!best || rms < best->first) best = {rms, plane};
   }
+  if (!best) return std::nullopt;
   return best->second;
 }
 
@@ -311,7 +355,7 @@ std::optional<Candidate> around_the_nose(const Scene& s, const Plane& plane, con
       refine(mirror_of(plane), central, s.mesh.positions, *s.index, 0.95, iterations, 1e-3 * unit);
   const Plane refined = plane_of(m, central);
   const double slab = std::max(1.0 * unit, 0.6 * s.spacing);
-  const std::vector<Vec3> profile = profile_of(s, refined, slab, &tip, 90.0 * unit);
+  const std::vector<Vec3> profile = profile_of(s, refined, slab, unit, &tip, 90.0 * unit);
   for (const Nose& nose : find_noses(refined, profile, unit, 3, &seed.forward)) {
     if ((nose.tip - tip).norm() > 25.0 * unit || nose.prominence < kMinNoseProminence) continue;
     return Candidate{refined, nose, mirror_rms(mirror_of(refined), central, *s.index) / unit};
@@ -369,6 +413,25 @@ std::optional<double> robust_scale(const Landmarks& found) {
   return ratios[ratios.size() / 2];
 }
 
+// The landmarks made mirror-symmetric about the candidate's plane: each left/right pair replaced by the
+// mean of one and the other's mirror image. A frame fitted to them (onto the symmetric average face)
+// takes the plane's normal for its x axis, so that while a candidate is verified, its yaw and roll come
+// from the symmetry of the whole central face and pitch from the landmarks: searched in a frame turned by
+// a few corners found off on one side (a carved eye without a clear corner, a smile), the corners come
+// out further off and the frame turns further. (The final frame is the landmarks' own fit, from the frame
+// this gives: a fixed point of the search, which registration's wobble of a fraction of a degree from
+// pose to pose does not move.)
+Landmarks symmetrised(const Landmarks& found, const Plane& plane) {
+  const Mirror m = mirror_of(plane);
+  Landmarks out = found;
+  for (std::size_t i = 0; i < kLandmarkCount; ++i) {
+    const auto l = static_cast<Landmark>(i);
+    const Landmark r = mirrored(l);
+    if (r != l && found.has(l) && found.has(r)) out[l] = 0.5 * (*found[l] + m(*found[r]));
+  }
+  return out;
+}
+
 Similarity similarity(const FaceFrame& f) { return {f.rotation, f.translation, f.scale}; }
 
 // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
@@ -391,12 +454,21 @@ struct Verified {
 // to them, a few times: a candidate that is a face ends with its landmarks on the average face's.
 // With `fixed_scale`, the scale stays (the file stated the units).
 Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, bool fixed_scale, int rounds,
-                double cell) {
-  // The first round both ways up; the rest the better way.
+                double cell, const Similarity* from = nullptr) {
+  // The first round both ways up (or from the frame a quicker verification ended in); the rest the
+  // better way.
   Verified best;
   Similarity frame;
-  for (const Vec3& up : {c.nose.up, Vec3(-c.nose.up)}) {
-    const Similarity start = nose_frame(c.nose, up, mm_per_unit);
+  std::vector<Similarity> starts;
+  if (from) {
+    starts.push_back(*from);
+    starts.back().translation *= mm_per_unit / from->scale;
+    starts.back().scale = mm_per_unit;
+  } else {
+    for (const Vec3& up : {c.nose.up, Vec3(-c.nose.up)})
+      starts.push_back(nose_frame(c.nose, up, mm_per_unit));
+  }
+  for (const Similarity& start : starts) {
     const Landmarks found =
         detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, start, cell, s.loops);
     const std::optional<Shape> shape = shape_of(found);
@@ -410,7 +482,7 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, bool fix
     const double mm = fixed_scale ? frame.scale
                                   : std::clamp(robust_scale(best.found).value_or(frame.scale),
                                                frame.scale / 1.5, frame.scale * 1.5);
-    Result<FaceFrame> next = frame_from_landmarks(best.found, mm, Units::Unknown);
+    Result<FaceFrame> next = frame_from_landmarks(symmetrised(best.found, c.plane), mm, Units::Unknown);
     if (!next) break;
     const double turn = Eigen::AngleAxisd(next->rotation * frame.rotation.transpose()).angle();
     if (turn < 0.01 && std::abs(mm / frame.scale - 1.0) < 0.01) break; // settled
@@ -460,13 +532,16 @@ std::optional<Fitted> fit_landmarks(const Scene& s, Similarity frame, double mm_
 // ---- confidence -----------------------------------------------------------------------------------------
 
 struct Cues {
-  double symmetry = 0.0, nose = 0.0, shape = 0.0, coverage = 0.0;
-  [[nodiscard]] double confidence() const { return std::min({symmetry, nose, shape, coverage}); }
+  double symmetry = 0.0, nose = 0.0, shape = 0.0, coverage = 0.0, hollow = 0.0;
+  [[nodiscard]] double confidence() const { return std::min({symmetry, nose, shape, coverage, hollow}); }
 };
 
-Cues cues(double symmetry_rms_mm, double prominence_mm, double shape_rms_mm, std::size_t found) {
-  return {clamp01(1.0 - (symmetry_rms_mm - 2.0) / 6.0), clamp01((prominence_mm - kMinNoseProminence) / 12.0),
-          clamp01(1.0 - (shape_rms_mm - 9.5) / 4.5), static_cast<double>(found) / kLandmarkCount};
+Cues cues(const Detection& d) {
+  return {clamp01(1.0 - (d.symmetry_rms_mm - kFaceSymmetryMm) / 6.0),
+          clamp01((d.nose_prominence_mm - kMinNoseProminence) / 12.0),
+          clamp01(1.0 - (d.fit_rms_mm - kFaceShapeMm) / 4.5),
+          static_cast<double>(d.landmarks.count()) / kLandmarkCount,
+          clamp01((d.eye_hollow_mm - kMinEyeHollow) / 1.5)};
 }
 
 // The scales (mm per unit) to try when the file states no units: the scan, whatever it holds, is a
@@ -528,7 +603,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     Plane plane;
   };
   std::vector<Local> locals;
-  {
+  const auto find_locals = [&] {
     std::vector<std::pair<double, Extreme>> pointed;
     for (const Extreme& e : extreme_places(extreme_points(scene, 600), 1.0 / mid, 1000))
       if (const double fall = fall_around(scene, e.point, e.direction, 1.0 / mid); fall >= 5.0)
@@ -539,11 +614,11 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       if (const std::optional<Plane> plane = local_plane(scene, e.point, e.direction, 1.0 / mid))
         locals.push_back({e, *plane});
     }
-  }
+  };
 
   double best_prominence = 0.0;
   std::vector<Hypothesis> quick;
-  for (const double mm : scales) {
+  const auto try_scale = [&](double mm, bool on_planes, bool on_locals) {
     const double unit = 1.0 / mm;
     const double slab = std::max(1.0 * unit, 0.6 * scene.spacing);
     std::vector<Candidate> seeds;
@@ -557,12 +632,13 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
         return;
       seeds.push_back({plane, nose, 0.0});
     };
-    for (const Plane& plane : planes)
-      for (const Nose& nose : find_noses(plane, profile_of(scene, plane, slab), unit, 3))
+    for (const Plane& plane : on_planes ? std::span<const Plane>(planes) : std::span<const Plane>())
+      for (const Nose& nose : find_noses(plane, profile_of(scene, plane, slab, unit), unit, 3))
         add(plane, nose);
-    for (const Local& l : locals) {
-      const auto noses = find_noses(l.plane, profile_of(scene, l.plane, slab, &l.place.point, 40.0 * unit),
-                                    unit, 1, &l.place.direction);
+    for (const Local& l : on_locals ? std::span<const Local>(locals) : std::span<const Local>()) {
+      const auto noses =
+          find_noses(l.plane, profile_of(scene, l.plane, slab, unit, &l.place.point, 40.0 * unit), unit, 1,
+                     &l.place.direction);
       if (!noses.empty()) add(l.plane, noses.front());
     }
     for (const Candidate& seed : seeds) {
@@ -579,7 +655,27 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       h.rank = rank(*c, h.verified);
       quick.push_back(std::move(h));
     }
+  };
+  // Cheapest first, and no further than needed: the scan's own symmetry planes at the scale the file
+  // states or the bounding box suggests (`detect_units`: right for a face scan in mm, cm or m); then the
+  // local planes around its pointed places (a face turned on its shoulders, a bust); then every candidate
+  // scale (a bust, a head, units of no rule). Each stops when a face is found: symmetric, its landmarks
+  // on the average face, and (when the scale was a guess) saying the same unit.
+  const double first = fixed_scale ? scales.front() : millimetres_per(detect_units(scene.mesh));
+  const auto found_a_face = [&] {
+    return std::ranges::any_of(quick, [&](const Hypothesis& h) {
+      return h.verified.shape_rms < kFaceShapeMm && h.candidate.rms_mm < kFaceSymmetryMm &&
+             (fixed_scale || snap_units(h.verified.mm_per_unit) == snap_units(first));
+    });
+  };
+  try_scale(first, true, false);
+  if (!found_a_face()) {
+    find_locals();
+    try_scale(first, false, true);
   }
+  if (!fixed_scale && !found_a_face())
+    for (const double mm : scales)
+      try_scale(mm, true, true);
   std::ranges::sort(quick, std::greater{}, &Hypothesis::rank);
   std::vector<Hypothesis> hypotheses;
   for (const Hypothesis& q : quick) {
@@ -592,7 +688,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       continue;
     const std::optional<Candidate> c = around_the_nose(scene, q.candidate.plane, q.candidate.nose, 1.0 / mm);
     if (!c) continue;
-    Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 1.0)};
+    Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 1.0, &q.verified.frame)};
     h.rank = rank(*c, h.verified);
     hypotheses.push_back(std::move(h));
   }
@@ -606,31 +702,29 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   const Hypothesis& best = *std::ranges::max_element(hypotheses, {}, &Hypothesis::rank);
 
   // The scale: stated by the file, else the one the landmarks give, snapped to a standard unit when
-  // close to one. Then the landmarks again at that scale, until the scale the landmarks give stays.
-  Units units = scan.units;
-  double mm = best.verified.mm_per_unit;
-  if (!fixed_scale) {
-    if (const std::optional<Shape> shape = shape_of(best.verified.found)) mm = shape->mm_per_unit;
-    units = snap_units(mm);
-    if (units != Units::Unknown) mm = millimetres_per(units);
-  }
+  // close to one. The landmarks are searched in face millimetres whatever the units (the windows fit the
+  // face, be it larger than life or a child's): at the scale the landmarks give, again until it stays.
+  double face_mm = best.verified.mm_per_unit;
+  if (const std::optional<Shape> shape = shape_of(best.verified.found)) face_mm = shape->mm_per_unit;
   Candidate chosen = best.candidate;
-  if (std::abs(mm / best.verified.mm_per_unit - 1.0) > 0.02)
-    if (const std::optional<Candidate> again = around_the_nose(scene, chosen.plane, chosen.nose, 1.0 / mm))
+  if (std::abs(face_mm / best.verified.mm_per_unit - 1.0) > 0.02)
+    if (const std::optional<Candidate> again =
+            around_the_nose(scene, chosen.plane, chosen.nose, 1.0 / face_mm))
       chosen = *again;
   std::optional<Fitted> fitted;
   // From the frame the refined symmetry plane and nose give (it fixes the roll and yaw better than
   // landmarks searched on a coarse map), the way up verification found.
   const Vec3 up =
       best.verified.frame.rotation.row(1).dot(chosen.nose.up) >= 0.0 ? chosen.nose.up : Vec3(-chosen.nose.up);
-  Similarity start = nose_frame(chosen.nose, up, mm);
+  Similarity start = nose_frame(chosen.nose, up, face_mm);
   for (int pass = 0; pass < 3; ++pass) {
-    fitted = fit_landmarks(scene, start, mm, units);
-    if (!fitted || fixed_scale || units != Units::Unknown) break;
+    fitted = fit_landmarks(scene, start, face_mm, Units::Unknown);
+    if (!fitted) break;
     const std::optional<Shape> shape = shape_of(fitted->found);
-    if (!shape || std::abs(shape->mm_per_unit / mm - 1.0) < 1e-3) break;
+    // Until the scale moves less than 0.1 %: a fixed point, whatever the pose the search started from.
+    if (!shape || std::abs(shape->mm_per_unit / face_mm - 1.0) < 1e-3) break;
     start = similarity(fitted->frame);
-    mm = shape->mm_per_unit;
+    face_mm = shape->mm_per_unit;
   }
   if (!fitted)
     return make_error(
@@ -640,33 +734,49 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
                     chosen.nose.tip.x(), chosen.nose.tip.y(), chosen.nose.tip.z()),
         source);
 
+  // The frame at the scan's scale: its units' when it states them or the face's scale is close to a
+  // standard unit's, else the face's.
+  const Units units = fixed_scale ? scan.units : snap_units(face_mm);
+  const double mm = units == Units::Unknown ? face_mm : millimetres_per(units);
+  Result<FaceFrame> frame = frame_from_landmarks(fitted->found, mm, units);
+  if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, source);
+
   Detection out;
   out.landmarks = fitted->found;
   out.landmarks.units = units;
-  out.frame = fitted->frame;
+  out.frame = *frame;
   out.symmetry = chosen.plane;
-  // The symmetry and the nose measured again around the nose tip found, at the final scale.
-  const double rescale = mm / best.verified.mm_per_unit;
+  // The symmetry and the nose measured again around the nose tip found, in face millimetres.
+  const double rescale = face_mm / best.verified.mm_per_unit;
   out.symmetry_rms_mm = chosen.rms_mm * rescale;
   out.nose_prominence_mm = chosen.nose.prominence * rescale;
   Nose final_nose = chosen.nose;
   final_nose.tip = *fitted->found[Landmark::NoseTip];
-  final_nose.forward = fitted->frame.axis_in_scan(2); // looking at the face from the front
-  if (const std::optional<Candidate> around = around_the_nose(scene, chosen.plane, final_nose, 1.0 / mm)) {
+  final_nose.forward = out.frame.axis_in_scan(2); // looking at the face from the front
+  if (const std::optional<Candidate> around =
+          around_the_nose(scene, chosen.plane, final_nose, 1.0 / face_mm)) {
     out.symmetry = around->plane;
     out.symmetry_rms_mm = around->rms_mm;
     out.nose_prominence_mm = around->nose.prominence;
   }
   out.fit_rms_mm = fitted->shape_rms;
-  const Cues c = cues(out.symmetry_rms_mm, out.nose_prominence_mm, out.fit_rms_mm, out.landmarks.count());
+  {
+    Similarity seen = similarity(out.frame);
+    seen.translation *= face_mm / seen.scale;
+    seen.scale = face_mm;
+    out.eye_hollow_mm =
+        detail::eye_hollowness(scene.mesh.positions, scene.mesh.triangles, scene.spacing, seen, out.landmarks)
+            .value_or(0.0);
+  }
+  const Cues c = cues(out);
   out.confidence = c.confidence();
   if (out.confidence < options.min_confidence)
     return make_error(
         ErrorCode::NoFace,
         fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
-                    "landmark fit {:.1f} mm, {} of {} landmarks)",
+                    "landmark fit {:.1f} mm, {} of {} landmarks, eye hollows {:.1f} mm)",
                     out.confidence, options.min_confidence, out.symmetry_rms_mm, out.nose_prominence_mm,
-                    out.fit_rms_mm, out.landmarks.count(), kLandmarkCount),
+                    out.fit_rms_mm, out.landmarks.count(), kLandmarkCount, out.eye_hollow_mm),
         source);
   return out;
 }

@@ -28,17 +28,24 @@ Eigen::Vector2d refined_peak(const auto& score, Eigen::Vector2d at, double h) {
 }
 
 // The lateral end of a horizontal hollow (the mouth line, the fissure of an eye): walking from x_from
-// towards x_to, the columns whose most hollow point (over [y0, y1]) is at least `fraction` as deep as
-// the deepest column's; the end is the last of them reached without a gap.
+// towards x_to along the hollow (each column's most hollow point within [y0, y1] and within a cell and a
+// half of the previous column's, so that the walk follows the line, rising with a smile, and does not
+// slide off into a fold that leaves it: the furrows running down from the corners of an older mouth), the
+// columns at least `fraction` as deep as the deepest one; the end is the last of them reached without a
+// gap.
 std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_from, double x_to, double y0,
                                           double y1, double r, double fraction = 0.35) {
   const double step = x_to > x_from ? map.cell() : -map.cell();
   std::vector<std::pair<double, Eigen::Vector2d>> columns; // (most hollow relief, where)
+  std::optional<double> last_y;
   for (double x = x_from; (x_to - x) * step >= 0.0; x += step) {
     std::pair<double, Eigen::Vector2d> best{std::numeric_limits<double>::infinity(), {x, 0.0}};
-    for (double y = y0; y <= y1; y += map.cell())
+    const double lo = last_y ? std::max(y0, *last_y - 1.5 * map.cell()) : y0;
+    const double hi = last_y ? std::min(y1, *last_y + 1.5 * map.cell()) : y1;
+    for (double y = lo; y <= hi + 1e-9; y += map.cell())
       if (const auto rel = map.relief(x, y, r); rel && *rel < best.first)
         best = {*rel, Eigen::Vector2d(x, y)};
+    if (std::isfinite(best.first)) last_y = best.second.y();
     columns.push_back(best);
   }
   const auto deepest = std::ranges::min_element(columns, {}, &std::pair<double, Eigen::Vector2d>::first);
@@ -102,6 +109,31 @@ std::vector<Hole> holes_in_view(const Loops& loops, std::span<const Vec3> local,
     out.push_back(h);
   }
   return out;
+}
+
+// The mouth line on a midline profile (y, z), downwards from the nose, whose lips do not stand out of it
+// as bumps of z: a frame pitched back (the face looking up) or a receding lower face slopes away from the
+// nose to the chin. The bending c(y) = z(y) - (z(y - 4) + z(y + 4)) / 2 ignores any slope: past the
+// groove under the nose, its first two bumps are the lips and the most bent-in point between them the
+// mouth. Nothing when the profile does not show them.
+std::optional<double> lips_by_bending(const std::vector<std::pair<double, double>>& midline) {
+  constexpr std::size_t h = 4;  // profile samples are 1 mm apart
+  constexpr double kBump = 0.2; // mm: a bump or a groove, not noise
+  if (midline.size() < 2 * h + 3) return std::nullopt;
+  std::vector<double> c(midline.size(), 0.0);
+  for (std::size_t i = h; i + h < midline.size(); ++i)
+    c[i] = midline[i].second - 0.5 * (midline[i - h].second + midline[i + h].second);
+  std::size_t i = h;
+  while (i + h < midline.size() && c[i] > -kBump) // down the nose to the groove under it
+    ++i;
+  std::vector<std::size_t> bumps;
+  for (; i + h + 1 < midline.size() && bumps.size() < 2; ++i)
+    if (c[i] > kBump && c[i] >= c[i - 1] && c[i] >= c[i + 1]) bumps.push_back(i);
+  if (bumps.size() < 2) return std::nullopt;
+  const auto first = c.begin() + static_cast<std::ptrdiff_t>(bumps[0]);
+  const auto deepest = std::min_element(first, c.begin() + static_cast<std::ptrdiff_t>(bumps[1]));
+  if (*deepest > -kBump) return std::nullopt;
+  return midline[static_cast<std::size_t>(deepest - c.begin())].first;
 }
 
 } // namespace
@@ -197,7 +229,9 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
       bumps.push_back(i);
   }
   double y_slit = y0 - 30.0;
-  if (bumps.size() == 2) {
+  if (const std::optional<double> slit = lips_by_bending(midline)) {
+    y_slit = *slit;
+  } else if (bumps.size() == 2) {
     const auto lowest = std::min_element(midline.begin() + static_cast<std::ptrdiff_t>(bumps[0]),
                                          midline.begin() + static_cast<std::ptrdiff_t>(bumps[1]),
                                          [](const auto& a, const auto& b) { return a.second < b.second; });
@@ -296,6 +330,28 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
     y_scan += 1.0;
   place(Landmark::FaceTop, x0, y_scan);
   return found;
+}
+
+std::optional<double> eye_hollowness(std::span<const Vec3> points, std::span<const Triangle> triangles,
+                                     double spacing, const Similarity& frame, const Landmarks& landmarks) {
+  if (!landmarks.has(Landmark::EyeInnerLeft) || !landmarks.has(Landmark::EyeInnerRight)) return std::nullopt;
+  std::vector<Vec3> local(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    local[i] = frame.to_face(points[i]);
+  spacing *= frame.scale;
+  detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
+  map.rasterise(local, triangles, std::max(1.5, 1.5 * spacing));
+  map.fill_holes(4);
+  // Smoothed at least as much as the points are apart: a coarse cloud's splats make hollows of their own.
+  const detail::DepthMap soft = map.smoothed(std::max(1.5, spacing));
+  std::optional<double> least;
+  for (Landmark l : {Landmark::EyeInnerLeft, Landmark::EyeInnerRight}) {
+    const Vec3 q = frame.to_face(*landmarks[l]);
+    const std::optional<double> rel = soft.relief(q.x(), q.y(), 12.0);
+    if (!rel) return std::nullopt;
+    least = std::min(least.value_or(-*rel), -*rel);
+  }
+  return least;
 }
 
 } // namespace pdeface::align::detail

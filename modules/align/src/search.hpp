@@ -38,4 +38,14 @@ using Loops = std::vector<std::vector<std::uint32_t>>;
                                          double spacing, const Similarity& frame, double cell = 1.0,
                                          const Loops& loops = {});
 
+// How hollow the scan is at its inner eye corners, seen in `frame` (mm): the least, over the two corners,
+// of the mean depth within 12 mm of a corner minus the corner's own depth, on a map smoothed by 1.5 mm
+// or the point spacing if larger.
+// A face's inner eye corners lie in the sockets between the nose and the brow, a few mm below their
+// surroundings; a convex object (a box's corner, a cylinder's rim, a sphere) has no hollow anywhere,
+// a flat sheet none either. Nothing when a corner is missing or too near the edge of the scan.
+[[nodiscard]] std::optional<double> eye_hollowness(std::span<const Vec3> points,
+                                                   std::span<const Triangle> triangles, double spacing,
+                                                   const Similarity& frame, const Landmarks& landmarks);
+
 } // namespace pdeface::align::detail

@@ -40,6 +40,9 @@ struct Detection {
   double nose_prominence_mm = 0.0; //!< how sharply the nose tip stands out of the symmetry profile
   double fit_rms_mm = 0.0;         //!< RMS of the nose tip, eye and mouth corners against the average face
                                    //!< after a similarity fit (face mm; a landmark not found counts 30 mm)
+  double eye_hollow_mm = 0.0;      //!< how far the inner eye corners lie below the surface within 12 mm of
+                                   //!< them (face mm, the shallower corner): eye sockets; no convex object
+                                   //!< has them
 };
 
 //! Finds the landmarks of the face in `scan`, in its units when it states them, else at the scale the face
