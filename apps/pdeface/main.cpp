@@ -7,9 +7,13 @@
 #include <fmt/format.h>
 
 #include <array>
+#include <cstdio>
+#include <exception>
 #include <string>
 
-int main(int argc, char** argv) {
+namespace {
+
+int run(int argc, char** argv) {
   using namespace pdeface::cli;
   CLI::App app{
       "pdeface: 3D face scans to compact PDE surfaces and back, and conversion between mesh formats"};
@@ -32,4 +36,20 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : kUsageError; // --help and --version exit 0
   }
   return status;
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    // A bug (bad data is a Result, never an exception): say so rather than abort.
+    std::fputs("pdeface: internal error: ", stderr);
+    std::fputs(e.what(), stderr);
+    std::fputs("\n", stderr);
+  } catch (...) {
+    std::fputs("pdeface: internal error\n", stderr);
+  }
+  return pdeface::cli::kInternalError;
 }

@@ -22,8 +22,9 @@ namespace pdeface::cli {
 
 namespace fs = std::filesystem;
 
-inline constexpr int kDataError = 1;  // the input or output could not be read, converted or written
-inline constexpr int kUsageError = 2; // the command line itself is wrong
+inline constexpr int kDataError = 1;     // the input or output could not be read, converted or written
+inline constexpr int kUsageError = 2;    // the command line itself is wrong
+inline constexpr int kInternalError = 3; // a bug: an exception reached the command line
 
 //! A command: adds its subcommand to `app`; when that is the one given, runs it and sets `status`.
 using Command = void (*)(CLI::App& app, int& status);

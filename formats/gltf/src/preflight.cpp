@@ -267,8 +267,10 @@ private:
     for (const auto& [name, id] : ids->items()) {
       if (!unsigned_of(&id) || id.get<std::uint64_t>() > std::numeric_limits<int>::max())
         return malformed(fmt::format("the id of {} is not a Draco attribute id", name));
-      if (Result<const json*> a = accessor(member(attributes, name.c_str()), where + " attribute " + name);
-          !a)
+      std::string what = where;
+      what += " attribute ";
+      what += name;
+      if (Result<const json*> a = accessor(member(attributes, name.c_str()), what); !a)
         return std::move(a).error();
     }
 

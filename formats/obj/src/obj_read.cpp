@@ -27,7 +27,7 @@ using text::Token;
 
 constexpr std::size_t kMaxCorners = 255; // tinyobjloader stores a face's corner count in an unsigned char
 
-enum Kind { kVertex, kTexcoord, kNormal };
+enum Kind { Vertex, Texcoord, Normal };
 constexpr std::array<std::string_view, 3> kKindNames{"vertex", "texture coordinate", "normal"};
 
 // What the validator learnt about the document.
@@ -58,7 +58,7 @@ public:
       if (Result<void> ok = statement(begin, end, line); !ok) return std::move(ok).error();
       begin = end + 1;
     }
-    for (int kind : {kVertex, kTexcoord, kNormal})
+    for (int kind : {Vertex, Texcoord, Normal})
       if (highest_[kind].index > survey_.counts[kind])
         return fail(ErrorCode::IndexOutOfRange, highest_[kind].where,
                     fmt::format("a face refers to {} {}, but there are {}", kKindNames[kind],
@@ -89,8 +89,8 @@ private:
     const Token keyword = scan.next_on_line();
     const std::string_view word = keyword.text;
     if (word == "v") return vertex(scan, keyword);
-    if (word == "vt") return counted(numbers(scan, keyword, 1, 3, kTexcoord));
-    if (word == "vn") return counted(numbers(scan, keyword, 3, 3, kNormal));
+    if (word == "vt") return counted(numbers(scan, keyword, 1, 3, Texcoord));
+    if (word == "vn") return counted(numbers(scan, keyword, 3, 3, Normal));
     if (word == "f") return face(scan, keyword);
     if (word == "o" && survey_.name.empty()) {
       const Token name = scan.next_on_line();
@@ -134,7 +134,7 @@ private:
 
   // x y z, x y z w, or x y z r g b (the common vertex-colour extension).
   Result<void> vertex(Scanner& scan, const Token& keyword) {
-    Result<std::size_t> count = numbers(scan, keyword, 3, 6, kVertex);
+    Result<std::size_t> count = numbers(scan, keyword, 3, 6, Vertex);
     if (!count) return std::move(count).error();
     if (*count == 5)
       return fail(ErrorCode::Malformed, keyword.location(),
@@ -167,7 +167,7 @@ private:
     }
     if (parts[0].empty() || (n == 1 && parts[1].empty()) || (n == 2 && parts[2].empty()))
       return bad_corner(t);
-    for (int kind : {kVertex, kTexcoord, kNormal}) {
+    for (int kind : {Vertex, Texcoord, Normal}) {
       if (parts[kind].empty()) continue;
       const std::optional<std::int64_t> index = text::parse_integer(parts[kind]);
       if (!index) return bad_corner(t);
@@ -230,15 +230,16 @@ public:
   // The value of component `k` for a vertex (0 for vertices on no face).
   [[nodiscard]] float at(std::size_t vertex, int k) const {
     const int slot = slot_[vertex];
-    return slot < 0 ? 0.0f : values_[static_cast<std::size_t>(slot * width_ + k)];
+    return slot < 0 ? 0.0f : values_[index(slot, k)];
   }
 
 private:
-  bool same(int a, int b) const {
+  [[nodiscard]] std::size_t index(int slot, int k) const {
+    return static_cast<std::size_t>(slot) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(k);
+  }
+  [[nodiscard]] bool same(int a, int b) const {
     for (int k = 0; k < width_; ++k)
-      if (values_[static_cast<std::size_t>(a * width_ + k)] !=
-          values_[static_cast<std::size_t>(b * width_ + k)])
-        return false;
+      if (values_[index(a, k)] != values_[index(b, k)]) return false;
     return true;
   }
   const std::vector<tinyobj::real_t>& values_;
@@ -254,7 +255,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   std::string text(bytes);
   Result<Survey> survey = Validator(text, source).run();
   if (!survey) return std::move(survey).error();
-  if (survey->counts[kVertex] == 0)
+  if (survey->counts[Vertex] == 0)
     return make_error(ErrorCode::Empty, "no vertices (v statements) in the file", std::string(source));
 
   tinyobj::ObjReaderConfig config;
@@ -305,10 +306,10 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
     note(fmt::format("{} dropped: {}", what, attribute.why_not()));
     return false;
   };
-  if (keep(normals, kNormal, "normals"))
+  if (keep(normals, Normal, "normals"))
     for (std::size_t i = 0; i < vertices; ++i)
       mesh.normals.emplace_back(normals.at(i, 0), normals.at(i, 1), normals.at(i, 2));
-  if (keep(texcoords, kTexcoord, "texture coordinates"))
+  if (keep(texcoords, Texcoord, "texture coordinates"))
     for (std::size_t i = 0; i < vertices; ++i)
       mesh.texcoords.emplace_back(texcoords.at(i, 0), texcoords.at(i, 1));
   if (survey->colored == vertices) {

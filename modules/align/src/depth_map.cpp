@@ -135,9 +135,14 @@ std::optional<double> DepthMap::relief(double x, double y, double radius) const 
 
 DepthMap DepthMap::smoothed(double sigma) const {
   const int reach = static_cast<int>(std::ceil(3.0 * sigma / cell_));
-  std::vector<double> kernel(static_cast<std::size_t>(2 * reach + 1));
+  const int width = 2 * reach + 1;
+  std::vector<double> kernel(static_cast<std::size_t>(width));
+  auto tap = [&](int offset) -> double& {
+    const int at = offset + reach;
+    return kernel[static_cast<std::size_t>(at)];
+  };
   for (int i = -reach; i <= reach; ++i)
-    kernel[static_cast<std::size_t>(i + reach)] = std::exp(-0.5 * (i * cell_ / sigma) * (i * cell_ / sigma));
+    tap(i) = std::exp(-0.5 * (i * cell_ / sigma) * (i * cell_ / sigma));
   // Separable blur of z·known and of known, then their ratio: unknown cells do not pull depths to zero.
   const Eigen::MatrixXd mask = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : 1.0; });
   const Eigen::MatrixXd values = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
@@ -148,15 +153,13 @@ DepthMap DepthMap::smoothed(double sigma) const {
     for (int k = -reach; k <= reach; ++k) {
       const Eigen::Index n = cols - std::abs(k);
       if (n <= 0) continue;
-      across.middleCols(std::max(0, -k), n) +=
-          kernel[static_cast<std::size_t>(k + reach)] * in.middleCols(std::max(0, k), n);
+      across.middleCols(std::max(0, -k), n) += tap(k) * in.middleCols(std::max(0, k), n);
     }
     Eigen::MatrixXd out = Eigen::MatrixXd::Zero(rows, cols);
     for (int k = -reach; k <= reach; ++k) {
       const Eigen::Index n = rows - std::abs(k);
       if (n <= 0) continue;
-      out.middleRows(std::max(0, -k), n) +=
-          kernel[static_cast<std::size_t>(k + reach)] * across.middleRows(std::max(0, k), n);
+      out.middleRows(std::max(0, -k), n) += tap(k) * across.middleRows(std::max(0, k), n);
     }
     return out;
   };
