@@ -33,7 +33,7 @@ Eigen::Vector2d refined_peak(const auto& score, Eigen::Vector2d at, double h) {
 // slide off into a fold that leaves it: the furrows running down from the corners of an older mouth), the
 // columns at least `fraction` as deep as the deepest one; the end is the last of them reached without a
 // gap.
-std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_from, double x_to, double y0,
+std::optional<Eigen::Vector2d> hollow_end(const DepthMap& map, double x_from, double x_to, double y0,
                                           double y1, double r, double fraction = 0.35) {
   const double step = x_to > x_from ? map.cell() : -map.cell();
   std::vector<std::pair<double, Eigen::Vector2d>> columns; // (most hollow relief, where)
@@ -68,8 +68,7 @@ std::optional<Eigen::Vector2d> hollow_end(const detail::DepthMap& map, double x_
 }
 
 // The most cup-shaped point of a window, as (x, y) in the frame.
-std::optional<Eigen::Vector2d> most_cupped(const detail::DepthMap& map, double x0, double x1, double y0,
-                                           double y1) {
+std::optional<Eigen::Vector2d> most_cupped(const DepthMap& map, double x0, double x1, double y0, double y1) {
   std::optional<Eigen::Vector2d> best;
   double top = 0.0; // only cups count
   for (double y = y0; y <= y1; y += map.cell())
@@ -189,7 +188,7 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   for (std::size_t i = 0; i < points.size(); ++i)
     local[i] = frame.to_face(points[i]);
   spacing *= frame.scale;
-  detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, cell);
+  DepthMap map(-100.0, 100.0, -140.0, 120.0, cell);
   map.rasterise(local, triangles, std::max(1.5 * cell, 1.5 * spacing));
   map.fill_holes(std::max(1, static_cast<int>(std::lround(4.0 / cell))));
 
@@ -210,14 +209,14 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   if (!tip) return found;
   place(Landmark::NoseTip, tip->x(), tip->y());
   const double x0 = tip->x(), y0 = tip->y();
-  const detail::DepthMap cups = map.smoothed(2.5);
-  const detail::DepthMap soft = map.smoothed(1.0); // point clouds splat unevenly: their raw map is rough
+  const DepthMap cups = map.smoothed(2.5);
+  const DepthMap soft = map.smoothed(1.0); // point clouds splat unevenly: their raw map is rough
   std::vector<double> eye_y, mouth_y;
   // The mouth line where it crosses the midline. Down the midline from the nose the profile rises onto
   // the upper lip, dips into the mouth, rises onto the lower lip, dips under it and rises onto the chin:
   // the mouth is the lowest point between the first two bumps (the lips). Failing that, the deepest
   // groove (relief) between the nose and the chin.
-  const detail::DepthMap profile_map = map.smoothed(1.5);
+  const DepthMap profile_map = map.smoothed(1.5);
   std::vector<std::pair<double, double>> midline; // (y, z), downwards
   for (double y = y0 - 6.0; y >= y0 - 60.0; y -= 1.0)
     if (const auto z = profile_map.at(x0, y)) midline.emplace_back(y, *z);
@@ -339,11 +338,11 @@ std::optional<double> eye_hollowness(std::span<const Vec3> points, std::span<con
   for (std::size_t i = 0; i < points.size(); ++i)
     local[i] = frame.to_face(points[i]);
   spacing *= frame.scale;
-  detail::DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
+  DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
   map.rasterise(local, triangles, std::max(1.5, 1.5 * spacing));
   map.fill_holes(4);
   // Smoothed at least as much as the points are apart: a coarse cloud's splats make hollows of their own.
-  const detail::DepthMap soft = map.smoothed(std::max(1.5, spacing));
+  const DepthMap soft = map.smoothed(std::max(1.5, spacing));
   std::optional<double> least;
   for (Landmark l : {Landmark::EyeInnerLeft, Landmark::EyeInnerRight}) {
     const Vec3 q = frame.to_face(*landmarks[l]);

@@ -1,8 +1,8 @@
 #pragma once
 // The landmark search in a depth map of the scan seen from the front of a face frame. Internal to align.
 
-#include "depth_map.hpp"
 #include "pdeface/align/landmarks.hpp"
+#include "pdeface/core/depth_map.hpp"
 
 #include <Eigen/Core>
 

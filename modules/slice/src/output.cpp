@@ -1,6 +1,6 @@
 #include "pdeface/slice/output.hpp"
 
-#include "pdeface/align/front_view.hpp"
+#include "pdeface/svg/svg.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -17,17 +17,6 @@ nlohmann::json to_json(const std::vector<Vec3>& points) {
   for (const Vec3& p : points)
     out.push_back(to_json(p));
   return out;
-}
-
-// An SVG polyline through the points projected by `project` (to SVG user units).
-template <class Project>
-std::string polyline(const std::vector<Vec3>& points, const Project& project, std::string_view style) {
-  std::string d;
-  for (const Vec3& p : points) {
-    const auto [u, v] = project(p);
-    d += fmt::format("{:.2f},{:.2f} ", u, v);
-  }
-  return fmt::format("<polyline fill=\"none\" {} points=\"{}\"/>\n", style, d);
 }
 
 } // namespace
@@ -112,24 +101,24 @@ std::string profiles_svg(const Mesh& canonical, const ProfileSet& set, const Svg
   const double side_width = std::max(15.0 - z0, 95.0), gap = 15.0; // room for the caption
   const double width = (x1 - x0) + gap + side_width, height = (y1 - y0) + 16.0;
 
-  std::string svg =
+  std::string doc =
       fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{:.1f} {:.1f} {:.1f} {:.1f}\" "
                   "width=\"{:.0f}\" height=\"{:.0f}\" font-family=\"sans-serif\">\n",
                   x0, -y1, width, height, 3 * width, 3 * height);
-  svg += "<rect x=\"" + fmt::format("{:.1f}", x0) + "\" y=\"" + fmt::format("{:.1f}", -y1) +
+  doc += "<rect x=\"" + fmt::format("{:.1f}", x0) + "\" y=\"" + fmt::format("{:.1f}", -y1) +
          fmt::format("\" width=\"{:.1f}\" height=\"{:.1f}\" fill=\"white\"/>\n", width, height);
-  svg += align::front_view_image(canonical, {x0, x1, y0, y1, 0.5});
+  doc += svg::front_view_image(canonical, {x0, x1, y0, y1, 0.5});
   const auto front = [](const Vec3& p) { return std::pair{p.x(), -p.y()}; };
   for (const ProfileCurve& c : set.curves)
-    svg += polyline(c.points, front,
-                    c.role == PlaneRole::Joint ? "stroke=\"#d62728\" stroke-width=\"0.7\""
-                                               : "stroke=\"#ff7f0e\" stroke-width=\"0.4\"");
+    doc += svg::polyline(c.points, front,
+                         c.role == PlaneRole::Joint ? "stroke=\"#d62728\" stroke-width=\"0.7\""
+                                                    : "stroke=\"#ff7f0e\" stroke-width=\"0.4\"");
   static constexpr std::array<const char*, 4> kColours{"#1f77b4", "#2ca02c", "#9467bd", "#17becf"};
   for (std::size_t i = 0; i < set.evaluation.size(); ++i)
-    svg += polyline(set.evaluation[i].points, front,
-                    fmt::format("stroke=\"{}\" stroke-width=\"0.5\" stroke-dasharray=\"2 1\"",
-                                kColours[i % kColours.size()]));
-  svg +=
+    doc += svg::polyline(set.evaluation[i].points, front,
+                         fmt::format("stroke=\"{}\" stroke-width=\"0.5\" stroke-dasharray=\"2 1\"",
+                                     kColours[i % kColours.size()]));
+  doc +=
       fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"4\">front: {} curves (joints red), evaluation "
                   "profiles dashed</text>\n",
                   x0 + 2, -y1 + 5, set.curves.size());
@@ -138,24 +127,24 @@ std::string profiles_svg(const Mesh& canonical, const ProfileSet& set, const Svg
   if (symmetry && set.k >= 4) {
     const double dx = x1 + gap - z0;
     const auto side = [dx](const Vec3& p) { return std::pair{dx + p.z(), -p.y()}; };
-    svg += polyline(symmetry->points, side, "stroke=\"#333\" stroke-width=\"0.4\"");
+    doc += svg::polyline(symmetry->points, side, "stroke=\"#333\" stroke-width=\"0.4\"");
     if (auto fitted = fit_spline(symmetry->points, {.parameter = set.parameter, .controls = set.k}))
       for (const Vec3& p : fitted->resample(set.k)) {
         const auto [u, v] = side(p);
-        svg += fmt::format(
+        doc += fmt::format(
             "<path d=\"M{0:.2f},{1:.2f}l1.6,1.6m0,-1.6l-1.6,1.6\" transform=\"translate(-0.8,-0.8)\" "
             "stroke=\"#d62728\" stroke-width=\"0.35\"/>\n",
             u, v);
       }
     // Two lines: one would be wider than the side view (~0.55 em a character).
-    svg += fmt::format("<text x=\"{0:.1f}\" y=\"{1:.1f}\" font-size=\"4\">side: symmetry profile</text>\n"
+    doc += fmt::format("<text x=\"{0:.1f}\" y=\"{1:.1f}\" font-size=\"4\">side: symmetry profile</text>\n"
                        "<text x=\"{0:.1f}\" y=\"{2:.1f}\" font-size=\"4\">{3} raw points (line), {4} fitted "
                        "(x)</text>\n",
                        x1 + gap, -y1 + 5, -y1 + 10, symmetry->points.size(), set.k);
   }
-  svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"5\">{}</text>\n</svg>\n", x0 + 2, -y0 + 10,
-                     align::svg_escape(options.title));
-  return svg;
+  doc += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"5\">{}</text>\n</svg>\n", x0 + 2, -y0 + 10,
+                     svg::escape(options.title));
+  return doc;
 }
 
 } // namespace pdeface::slice

@@ -1,6 +1,7 @@
 #pragma once
-// A front-most depth map z(x, y) of a face in (or near) the canonical frame: the view a range scanner
-// has. Internal to align: landmark search in a regular grid is simple and robust.
+//! \file
+//! A front-most depth map z(x, y) of a mesh or point cloud seen along −z: the view a range scanner has.
+//! Landmark search works on it (a regular grid is simple and robust) and pictures are shaded from it.
 
 #include "pdeface/core/mesh.hpp"
 
@@ -11,7 +12,7 @@
 #include <optional>
 #include <span>
 
-namespace pdeface::align::detail {
+namespace pdeface {
 
 class DepthMap {
 public:
@@ -46,4 +47,4 @@ private:
   Eigen::MatrixXd z_; // rows: y, cols: x; NaN where nothing was seen
 };
 
-} // namespace pdeface::align::detail
+} // namespace pdeface

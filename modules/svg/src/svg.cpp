@@ -1,6 +1,6 @@
-#include "pdeface/align/front_view.hpp"
+#include "pdeface/svg/svg.hpp"
 
-#include "depth_map.hpp"
+#include "pdeface/core/depth_map.hpp"
 
 #include <fmt/format.h>
 
@@ -12,7 +12,7 @@
 #include <array>
 #include <cmath>
 
-namespace pdeface::align {
+namespace pdeface::svg {
 namespace {
 
 std::string base64(const std::string& bytes) {
@@ -43,7 +43,7 @@ std::string png(const std::vector<unsigned char>& grey, int width, int height) {
 
 } // namespace
 
-std::string svg_escape(std::string_view text) {
+std::string escape(std::string_view text) {
   std::string out;
   for (char c : text) {
     switch (c) {
@@ -57,7 +57,7 @@ std::string svg_escape(std::string_view text) {
 }
 
 std::string front_view_image(const Mesh& canonical, const FrontViewBox& box) {
-  detail::DepthMap map(box.x0, box.x1, box.y0, box.y1, box.pixel_mm);
+  DepthMap map(box.x0, box.x1, box.y0, box.y1, box.pixel_mm);
   map.rasterise(canonical.positions, canonical.triangles, 1.5);
 
   // Lambert shading of the depth map's normals, light from the upper left front.
@@ -79,4 +79,4 @@ std::string front_view_image(const Mesh& canonical, const FrontViewBox& box) {
                      box.x0, -box.y1, box.x1 - box.x0, box.y1 - box.y0, base64(png(grey, w, h)));
 }
 
-} // namespace pdeface::align
+} // namespace pdeface::svg

@@ -1,8 +1,8 @@
-#include "depth_map.hpp"
+#include "pdeface/core/depth_map.hpp"
 
 #include <algorithm>
 
-namespace pdeface::align::detail {
+namespace pdeface {
 
 DepthMap::DepthMap(double x0, double x1, double y0, double y1, double cell)
     : x0_(x0), y0_(y0), cell_(cell),
@@ -184,4 +184,4 @@ std::optional<double> DepthMap::cupness(double x, double y) const {
   return 0.5 * (zxx + zyy) - std::sqrt(0.25 * (zxx - zyy) * (zxx - zyy) + zxy * zxy);
 }
 
-} // namespace pdeface::align::detail
+} // namespace pdeface
