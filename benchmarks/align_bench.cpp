@@ -9,6 +9,8 @@
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 
+#include "../tests/support/test_meshes.hpp"
+
 #include "bench_support.hpp"
 
 #include <benchmark/benchmark.h>
@@ -34,27 +36,6 @@ Mesh read_scan(const char* name) {
 const Mesh& real_scan() {
   static const Mesh scan = read_scan("facefuns_f18.ply");
   return scan;
-}
-
-// Each triangle split in four (edge midpoints).
-Mesh subdivided(const Mesh& m) {
-  Mesh out;
-  out.positions = m.positions;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
-  auto mid = [&](std::uint32_t a, std::uint32_t b) {
-    const auto [it, fresh] =
-        middle.emplace(std::minmax(a, b), static_cast<std::uint32_t>(out.positions.size()));
-    if (fresh) out.positions.push_back(0.5 * (out.positions[a] + out.positions[b]));
-    return it->second;
-  };
-  for (const Triangle& t : m.triangles) {
-    const std::uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
-    out.triangles.push_back({t[0], ab, ca});
-    out.triangles.push_back({ab, t[1], bc});
-    out.triangles.push_back({ca, bc, t[2]});
-    out.triangles.push_back({ab, bc, ca});
-  }
-  return out;
 }
 
 void detect(benchmark::State& state, const Mesh& scan) {
@@ -97,7 +78,8 @@ void detect_eye_holes(benchmark::State& state) {
   detect(state, scan);
 }
 void detect_half_a_million(benchmark::State& state) {
-  static const Mesh fine = real_scan().vertex_count() ? subdivided(subdivided(real_scan())) : Mesh{};
+  static const Mesh fine =
+      real_scan().vertex_count() ? test::subdivided(test::subdivided(real_scan())) : Mesh{};
   detect(state, fine);
 }
 
