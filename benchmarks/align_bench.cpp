@@ -9,6 +9,8 @@
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 
+#include "../tests/support/test_meshes.hpp"
+
 #include "bench_support.hpp"
 
 #include <benchmark/benchmark.h>
@@ -17,105 +19,69 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <string>
+#include <utility>
 
 namespace {
 
 using namespace pdeface;
 
-Mesh read_scan(const char* name) {
+// A scan of the faces folder, read once; empty (its cases are then skipped) when it cannot be read.
+const Mesh& scan(const std::string& name) {
+  static std::map<std::string, Mesh> read;
+  const auto [it, fresh] = read.try_emplace(name);
+  if (!fresh) return it->second;
   auto loaded = formats::read_mesh(bench::face(name));
-  if (!loaded) {
+  if (loaded)
+    it->second = std::move(loaded->mesh);
+  else
     std::fprintf(stderr, "align_bench: %s; the case is skipped\n", loaded.error().to_string().c_str());
-    return Mesh{};
-  }
-  return loaded->mesh;
+  return it->second;
 }
 
-const Mesh& real_scan() {
-  static const Mesh scan = read_scan("facefuns_f18.ply");
-  return scan;
-}
-
-// Each triangle split in four (edge midpoints).
-Mesh subdivided(const Mesh& m) {
-  Mesh out;
-  out.positions = m.positions;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
-  auto mid = [&](std::uint32_t a, std::uint32_t b) {
-    const auto [it, fresh] =
-        middle.emplace(std::minmax(a, b), static_cast<std::uint32_t>(out.positions.size()));
-    if (fresh) out.positions.push_back(0.5 * (out.positions[a] + out.positions[b]));
-    return it->second;
-  };
-  for (const Triangle& t : m.triangles) {
-    const std::uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
-    out.triangles.push_back({t[0], ab, ca});
-    out.triangles.push_back({ab, t[1], bc});
-    out.triangles.push_back({ca, bc, t[2]});
-    out.triangles.push_back({ab, bc, ca});
-  }
-  return out;
-}
-
-void detect(benchmark::State& state, const Mesh& scan) {
-  if (scan.vertex_count() == 0) {
+void detect(benchmark::State& state, const Mesh& mesh) {
+  if (mesh.vertex_count() == 0) {
     state.SkipWithError("scan not available");
     return;
   }
   for (auto _ : state) {
-    auto found = align::detect_landmarks(scan);
+    auto found = align::detect_landmarks(mesh);
     if (!found) state.SkipWithError(found.error().to_string().c_str());
     benchmark::DoNotOptimize(found);
   }
-  state.counters["vertices"] = static_cast<double>(scan.vertex_count());
+  state.counters["vertices"] = static_cast<double>(mesh.vertex_count());
 }
 
 void detect_sample(benchmark::State& state) {
   static const Mesh face = sample_face();
   detect(state, face);
 }
-void detect_facefuns(benchmark::State& state) { detect(state, real_scan()); }
+void detect_scan(benchmark::State& state, const char* name) { detect(state, scan(name)); }
 void detect_facefuns_points(benchmark::State& state) {
-  static const Mesh cloud = to_mesh(to_point_cloud(real_scan()));
+  static const Mesh cloud = to_mesh(to_point_cloud(scan("facefuns_f18.ply")));
   detect(state, cloud);
 }
-
-void detect_bust(benchmark::State& state) {
-  static const Mesh scan = read_scan("demosthenes.obj");
-  detect(state, scan);
-}
-void detect_bust_on_pedestal(benchmark::State& state) {
-  static const Mesh scan = read_scan("bust_man_wreath.obj");
-  detect(state, scan);
-}
-void detect_coarse_patch(benchmark::State& state) {
-  static const Mesh scan = read_scan("fran_cut.wrl");
-  detect(state, scan);
-}
-void detect_eye_holes(benchmark::State& state) {
-  static const Mesh scan = read_scan("ict_05.ply");
-  detect(state, scan);
-}
 void detect_half_a_million(benchmark::State& state) {
-  static const Mesh fine = real_scan().vertex_count() ? subdivided(subdivided(real_scan())) : Mesh{};
+  const Mesh& real = scan("facefuns_f18.ply");
+  static const Mesh fine = real.vertex_count() ? test::subdivided(test::subdivided(real)) : Mesh{};
   detect(state, fine);
 }
 
 void to_canonical_frame(benchmark::State& state) {
-  const Mesh& scan = real_scan();
-  if (scan.vertex_count() == 0) return state.SkipWithError("scan not available");
-  const align::FaceFrame frame = align::detect_landmarks(scan).value().frame;
+  const Mesh& real = scan("facefuns_f18.ply");
+  if (real.vertex_count() == 0) return state.SkipWithError("scan not available");
+  const align::FaceFrame frame = align::detect_landmarks(real).value().frame;
   for (auto _ : state)
-    benchmark::DoNotOptimize(align::to_canonical(scan, frame));
+    benchmark::DoNotOptimize(align::to_canonical(real, frame));
 }
 
 BENCHMARK(detect_sample)->Unit(benchmark::kMillisecond);
-BENCHMARK(detect_facefuns)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(detect_scan, facefuns, "facefuns_f18.ply")->Unit(benchmark::kMillisecond);
 BENCHMARK(detect_facefuns_points)->Unit(benchmark::kMillisecond);
-BENCHMARK(detect_bust)->Unit(benchmark::kMillisecond);
-BENCHMARK(detect_bust_on_pedestal)->Unit(benchmark::kMillisecond);
-BENCHMARK(detect_coarse_patch)->Unit(benchmark::kMillisecond);
-BENCHMARK(detect_eye_holes)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(detect_scan, bust, "demosthenes.obj")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(detect_scan, bust_on_pedestal, "bust_man_wreath.obj")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(detect_scan, coarse_patch, "fran_cut.wrl")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(detect_scan, eye_holes, "ict_05.ply")->Unit(benchmark::kMillisecond);
 BENCHMARK(detect_half_a_million)->Unit(benchmark::kMillisecond)->Iterations(2);
 BENCHMARK(to_canonical_frame)->Unit(benchmark::kMillisecond);
 

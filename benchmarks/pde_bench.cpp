@@ -165,8 +165,9 @@ std::optional<RealCase> make_real_case(std::int64_t percent, std::string& why) {
 }
 
 // The case for the ratio in state.range(0) (made once, with fresh memory), or nullptr after skipping
-// the benchmark with the reason. Sets the counter K.
-const RealCase* real_case(benchmark::State& state) {
+// the benchmark with the reason. Sets the counter K, and pins the allocator as `memory` says for what
+// follows.
+const RealCase* real_case(benchmark::State& state, Memory memory) {
   static std::map<std::int64_t, std::pair<std::optional<RealCase>, std::string>> cache;
   const std::int64_t percent = state.range(0);
   auto it = cache.find(percent);
@@ -181,13 +182,13 @@ const RealCase* real_case(benchmark::State& state) {
     return nullptr;
   }
   state.counters["K"] = static_cast<double>(it->second.first->surface.sample_count());
+  pin_allocator(memory);
   return &*it->second.first;
 }
 
 void real_solve(benchmark::State& state, Memory memory) {
-  const RealCase* c = real_case(state);
+  const RealCase* c = real_case(state, memory);
   if (!c) return;
-  pin_allocator(memory);
   const FaultCounter faults(state);
   for (auto _ : state) {
     auto s = Surface::build(c->curves, reconstruct_options());
@@ -196,19 +197,22 @@ void real_solve(benchmark::State& state, Memory memory) {
   }
 }
 
-void real_evaluate(benchmark::State& state, Memory memory) {
-  const RealCase* c = real_case(state);
+// Times `step(c)` on the real case `c`, keeping what it makes, with the page faults counted.
+template <class Step> void time_real(benchmark::State& state, Memory memory, Step step) {
+  const RealCase* c = real_case(state, memory);
   if (!c) return;
-  pin_allocator(memory);
   const FaultCounter faults(state);
   for (auto _ : state)
-    benchmark::DoNotOptimize(c->surface.evaluate(grid_side, grid_side));
+    benchmark::DoNotOptimize(step(*c));
+}
+
+void real_evaluate(benchmark::State& state, Memory memory) {
+  time_real(state, memory, [](const RealCase& c) { return c.surface.evaluate(grid_side, grid_side); });
 }
 
 void real_triangulate(benchmark::State& state, Memory memory) {
-  const RealCase* c = real_case(state);
+  const RealCase* c = real_case(state, memory);
   if (!c) return;
-  pin_allocator(memory);
   const Grid grid = c->surface.evaluate(grid_side, grid_side);
   FaultCounter faults(state);
   for (auto _ : state) {
@@ -221,34 +225,24 @@ void real_triangulate(benchmark::State& state, Memory memory) {
 }
 
 void real_evaluate_triangulate(benchmark::State& state, Memory memory) {
-  const RealCase* c = real_case(state);
-  if (!c) return;
-  pin_allocator(memory);
-  const FaultCounter faults(state);
-  for (auto _ : state)
-    benchmark::DoNotOptimize(c->surface.mesh(grid_side, grid_side));
   state.counters["vertices"] = static_cast<double>(grid_side * grid_side);
+  time_real(state, memory, [](const RealCase& c) { return c.surface.mesh(grid_side, grid_side); });
 }
 
 // The floor under producing the mesh: its three arrays allocated and filled with zeros.
 void real_mesh_memory(benchmark::State& state, Memory memory) {
-  const RealCase* c = real_case(state);
-  if (!c) return;
-  pin_allocator(memory);
-  const FaultCounter faults(state);
-  for (auto _ : state) {
+  time_real(state, memory, [](const RealCase& c) {
     Mesh m;
-    m.positions.assign(c->mesh.positions.size(), Vec3::Zero());
-    m.triangles.assign(c->mesh.triangles.size(), Triangle{});
-    m.normals.assign(c->mesh.normals.size(), Vec3f::Zero());
-    benchmark::DoNotOptimize(m);
-  }
+    m.positions.assign(c.mesh.positions.size(), Vec3::Zero());
+    m.triangles.assign(c.mesh.triangles.size(), Triangle{});
+    m.normals.assign(c.mesh.normals.size(), Vec3f::Zero());
+    return m;
+  });
 }
 
 void real_encode(benchmark::State& state, Memory memory, const char* name) {
-  const RealCase* c = real_case(state);
+  const RealCase* c = real_case(state, memory);
   if (!c) return;
-  pin_allocator(memory);
   const FaultCounter faults(state);
   std::size_t bytes = 0;
   for (auto _ : state) {
@@ -261,9 +255,8 @@ void real_encode(benchmark::State& state, Memory memory, const char* name) {
 }
 
 void real_write(benchmark::State& state, Memory memory, const char* name) {
-  const RealCase* c = real_case(state);
+  const RealCase* c = real_case(state, memory);
   if (!c) return;
-  pin_allocator(memory);
   const FaultCounter faults(state);
   const std::filesystem::path path = std::filesystem::temp_directory_path() / name;
   std::size_t bytes = 0;
@@ -279,9 +272,8 @@ void real_write(benchmark::State& state, Memory memory, const char* name) {
 
 // Curves to a GLB file: solve, evaluate, triangulate, write (what `pdeface reconstruct` does after slicing).
 void real_curves_to_glb(benchmark::State& state, Memory memory) {
-  const RealCase* c = real_case(state);
+  const RealCase* c = real_case(state, memory);
   if (!c) return;
-  pin_allocator(memory);
   const FaultCounter faults(state);
   const std::filesystem::path path = std::filesystem::temp_directory_path() / "pdeface_pde_bench_all.glb";
   for (auto _ : state) {

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "pdeface_test.hpp"
+#include "test_meshes.hpp"
 
 #include <Eigen/Geometry>
 
@@ -284,33 +285,13 @@ Mesh decimated(const Mesh& m, double cell) {
   return out;
 }
 
-Mesh subdivided(const Mesh& m) {
-  Mesh out;
-  out.positions = m.positions;
-  std::map<std::pair<std::uint32_t, std::uint32_t>, std::uint32_t> middle;
-  auto mid = [&](std::uint32_t a, std::uint32_t b) {
-    const auto [it, fresh] =
-        middle.emplace(std::minmax(a, b), static_cast<std::uint32_t>(out.positions.size()));
-    if (fresh) out.positions.push_back(0.5 * (m.positions[a] + m.positions[b]));
-    return it->second;
-  };
-  for (const Triangle& t : m.triangles) {
-    const std::uint32_t ab = mid(t[0], t[1]), bc = mid(t[1], t[2]), ca = mid(t[2], t[0]);
-    out.triangles.push_back({t[0], ab, ca});
-    out.triangles.push_back({ab, t[1], bc});
-    out.triangles.push_back({ca, bc, t[2]});
-    out.triangles.push_back({ab, bc, ca});
-  }
-  return out;
-}
-
 TEST(SharedFacesResolution, ThreeThousandToAHundredThousandVertices) {
   PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
   const Mesh scan = load(path);
   auto reference = detect_landmarks(scan);
   ASSERT_TRUE(reference.ok());
   const Mesh coarse = decimated(scan, 4.5);
-  const Mesh fine = subdivided(scan);
+  const Mesh fine = test::subdivided(scan);
   ASSERT_LT(coarse.vertex_count(), 4000U);
   ASSERT_GT(fine.vertex_count(), 100000U);
   for (const Mesh* m : {&coarse, &fine}) {

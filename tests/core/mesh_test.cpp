@@ -1,6 +1,7 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/core/topology.hpp"
+#include "test_meshes.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,13 +11,7 @@
 namespace pdeface {
 namespace {
 
-// Two triangles forming the unit square in the z = 0 plane, counter-clockwise seen from +z.
-Mesh unit_square() {
-  Mesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  m.triangles = {{0, 1, 2}, {0, 2, 3}};
-  return m;
-}
+using test::unit_square;
 
 TEST(Mesh, BoundingBox) {
   const Box box = bounding_box(unit_square());

@@ -8,7 +8,6 @@
 #include <Eigen/LU>
 
 #include <cmath>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -89,11 +88,9 @@ TEST(PdeModes, StableBasisSolvesTheModeEquation) {
 }
 
 TEST(PdeModes, HermiteCardinalsMatchA50DigitReference) {
-  std::ifstream in(pdeface::test::fixtures() / "pde" / "hermite_cardinals.txt");
   int rows = 0;
   double worst = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
+  for (const std::string& line : pdeface::test::fixture_rows("pde", "hermite_cardinals.txt")) {
     std::istringstream s(line);
     double m = 0, t = 0;
     int derivative = 0;
@@ -130,10 +127,8 @@ TEST(PdeModes, CubicLimitAndEndCurvatures) {
 }
 
 TEST(PdeModes, Patch4AmplificationMatchesTheReference) {
-  std::ifstream in(pdeface::test::fixtures() / "pde" / "patch4_amplification.txt");
   int rows = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
+  for (const std::string& line : pdeface::test::fixture_rows("pde", "patch4_amplification.txt")) {
     std::istringstream s(line);
     double m = 0, expected = 0;
     s >> m >> expected;

@@ -6,7 +6,6 @@
 #include "pdeface_test.hpp"
 #include "synthetic_face.hpp"
 
-#include <fstream>
 #include <sstream>
 
 namespace {
@@ -25,10 +24,8 @@ struct Row {
 };
 
 std::vector<Row> oracle_rows() {
-  std::ifstream in(pdeface::test::fixtures() / "pde" / "face_oracle.txt");
   std::vector<Row> rows;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
+  for (const std::string& line : pdeface::test::fixture_rows("pde", "face_oracle.txt")) {
     std::istringstream s(line);
     Row r;
     r.text = line.substr(0, line.find('|'));

@@ -6,7 +6,6 @@
 #include "pdeface_test.hpp"
 #include "synthetic_face.hpp"
 
-#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -186,10 +185,8 @@ double worst_kink(const Surface& s, const std::vector<double>& joints) {
 }
 
 TEST(PdeSurface, SplineJointsAreSmoothPaperJointsKink) {
-  std::ifstream in(pdeface::test::fixtures() / "pde" / "paper_kinks.txt");
   int rows = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
+  for (const std::string& line : pdeface::test::fixture_rows("pde", "paper_kinks.txt")) {
     std::istringstream fields(line);
     double ratio = 0, a = 0, expected = 0;
     std::size_t modes = 0;
@@ -218,10 +215,8 @@ TEST(PdeSurface, SplineJointsAreSmoothPaperJointsKink) {
 }
 
 TEST(PdeSurface, SplineAmplificationIsAtMost155ForEveryMode) {
-  std::ifstream in(pdeface::test::fixtures() / "pde" / "spline_amplification.txt");
   int rows = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty() || line[0] == '#') continue;
+  for (const std::string& line : pdeface::test::fixture_rows("pde", "spline_amplification.txt")) {
     std::istringstream fields(line);
     std::size_t n = 0;
     double expected = 0;

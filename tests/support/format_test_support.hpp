@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <cstring>
 #include <string>
 #include <string_view>
@@ -41,6 +42,27 @@ inline bool has_note(const Notes& notes, std::string_view text) {
 template <class T> Error error_of(const Result<T>& result) {
   EXPECT_FALSE(result.ok()) << "expected an error";
   return result.ok() ? Error{} : result.error();
+}
+
+//! A bad input and the error reading it must give: its code, line and column.
+struct ErrorCase {
+  std::string text;
+  ErrorCode code;
+  std::uint64_t line;
+  std::uint64_t column;
+};
+
+//! Each case read by `read` (a format's reader, the input named `source`) fails with the case's error at
+//! its line and column, naming `source`.
+template <class Read>
+void expect_errors_at(Read read, std::string_view source, const std::vector<ErrorCase>& cases) {
+  for (const ErrorCase& c : cases) {
+    const Error e = error_of(read(c.text, source, nullptr));
+    EXPECT_EQ(e.code, c.code) << c.text << ": " << e.message;
+    EXPECT_EQ(e.where.line, c.line) << c.text << ": " << e.message;
+    EXPECT_EQ(e.where.column, c.column) << c.text << ": " << e.message;
+    EXPECT_EQ(e.source, source) << c.text;
+  }
 }
 
 //! `mesh` with every coordinate rounded to float32, as a float format stores it.

@@ -6,15 +6,27 @@
 #include <cctype>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <optional>
 #include <random>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pdeface::test {
 
 //! tests/data: small fixtures we made ourselves.
 inline std::filesystem::path fixtures() { return PDEFACE_TEST_FIXTURES; }
+
+//! The rows of a table among the fixtures, tests/data/<folder>/<name>: its lines but the blank ones and the
+//! comments ('#'); none when it cannot be read.
+inline std::vector<std::string> fixture_rows(std::string_view folder, std::string_view name) {
+  std::ifstream in(fixtures() / folder / name);
+  std::vector<std::string> rows;
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line[0] != '#') rows.push_back(line);
+  return rows;
+}
 
 //! The folder of real scans: $PDEFACE_DATA, else the build's default (../shared/faces); nullopt if absent.
 inline std::optional<std::filesystem::path> faces_dir() {

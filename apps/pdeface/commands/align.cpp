@@ -18,16 +18,14 @@ struct AlignArgs {
 };
 
 int run_align(const AlignArgs& args) {
-  Result<formats::LoadedMesh> scan = read_scan(args.in);
-  if (!scan) return fail(scan.error());
-  Result<align::LandmarkSource> landmarks = landmark_source(args.landmarks);
-  if (!landmarks) return fail(landmarks.error());
+  Result<ScanAndLandmarks> input = read_scan_and_landmarks(args.in, args.landmarks);
+  if (!input) return fail(input.error());
   Result<align::AlignOutcome> aligned =
-      align::align_request(scan->mesh, {.landmarks = *std::move(landmarks),
-                                        .crop = args.crop,
-                                        .landmarks_json = !args.landmarks_out.empty(),
-                                        .preview = !args.preview.empty(),
-                                        .source = args.in.string()});
+      align::align_request(input->scan.mesh, {.landmarks = std::move(input->landmarks),
+                                              .crop = args.crop,
+                                              .landmarks_json = !args.landmarks_out.empty(),
+                                              .preview = !args.preview.empty(),
+                                              .source = args.in.string()});
   if (!aligned) return fail(aligned.error());
 
   Notes notes;
@@ -60,10 +58,8 @@ void align_command(CLI::App& app, int& status) {
       "Move a scan into the canonical face frame (nose tip at the origin, x to the face's left, y up, "
       "z to the viewer, mm), from detected or given landmarks");
   add_input(cmd, args->in, "Scan to align (any readable format)");
-  cmd->add_option("-o,--output", args->out, "Aligned mesh to write (any writable format)")->required();
-  cmd->add_option("--landmarks", args->landmarks,
-                  "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
-      ->check(CLI::ExistingFile);
+  add_output(cmd, args->out, "Aligned mesh to write (any writable format)");
+  add_landmarks(cmd, args->landmarks);
   cmd->add_option("--landmarks-out", args->landmarks_out,
                   "Write the landmarks (scan frame) and the transform as JSON");
   cmd->add_option("--preview", args->preview,

@@ -24,17 +24,30 @@ Result<formats::LoadedMesh> read_scan(const std::filesystem::path& in) {
   return scan;
 }
 
-Result<align::LandmarkSource> landmark_source(const std::filesystem::path& file) {
-  if (file.empty()) return align::LandmarkSource{};
-  Result<std::string> bytes = read_file(file);
+Result<ScanAndLandmarks> read_scan_and_landmarks(const std::filesystem::path& in,
+                                                 const std::filesystem::path& landmarks) {
+  Result<formats::LoadedMesh> scan = read_scan(in);
+  if (!scan) return scan.error();
+  if (landmarks.empty()) return ScanAndLandmarks{*std::move(scan), {}};
+  Result<std::string> bytes = read_file(landmarks);
   if (!bytes) return bytes.error();
-  return align::LandmarkSource{*std::move(bytes), file.string()};
+  return ScanAndLandmarks{*std::move(scan), {*std::move(bytes), landmarks.string()}};
 }
 
 Result<void> write_outputs(std::span<const OutputFile> files) { return write_files_atomic(files); }
 
 void add_input(CLI::App* cmd, std::filesystem::path& in, const std::string& description) {
   cmd->add_option("input", in, description)->required()->check(CLI::ExistingFile);
+}
+
+void add_output(CLI::App* cmd, std::filesystem::path& out, const std::string& description) {
+  cmd->add_option("-o,--output", out, description)->required();
+}
+
+void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks) {
+  cmd->add_option("--landmarks", landmarks,
+                  "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
+      ->check(CLI::ExistingFile);
 }
 
 void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
@@ -49,10 +62,7 @@ void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
 }
 
 void CurveArgs::add_to(CLI::App* cmd, bool with_landmarks) {
-  if (with_landmarks)
-    cmd->add_option("--landmarks", landmarks,
-                    "Use these landmarks (pdeface JSON or menpo LJSON) instead of detecting them")
-        ->check(CLI::ExistingFile);
+  if (with_landmarks) add_landmarks(cmd, landmarks);
   CLI::Option* ratio = cmd->add_option("--ratio", options.ratio,
                                        "Sampling ratio: K = ratio x 300 reference points (0.05..0.6)")
                            ->check(CLI::Range(slice::kMinRatio, slice::kMaxRatio))

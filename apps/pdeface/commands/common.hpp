@@ -43,8 +43,16 @@ int fail(const Error& error);
 
 //! A mesh read from a file, its notes printed.
 [[nodiscard]] Result<formats::LoadedMesh> read_scan(const std::filesystem::path& in);
-//! A landmark file's bytes (none when `file` is empty: detect them).
-[[nodiscard]] Result<align::LandmarkSource> landmark_source(const std::filesystem::path& file);
+
+//! A scan and the landmarks it is to be aligned by.
+struct ScanAndLandmarks {
+  formats::LoadedMesh scan;
+  align::LandmarkSource landmarks; // none: detect them
+};
+//! The scan in `in` (its notes printed), and the bytes of the landmark file `landmarks` (none when it is
+//! empty: detect them).
+[[nodiscard]] Result<ScanAndLandmarks> read_scan_and_landmarks(const std::filesystem::path& in,
+                                                               const std::filesystem::path& landmarks);
 //! The outputs of a command, written as a set (none if any fails).
 [[nodiscard]] Result<void> write_outputs(std::span<const OutputFile> files);
 
@@ -58,6 +66,10 @@ template <class E> E named(std::span<const NamedValue<E>> names, const std::stri
 }
 
 void add_input(CLI::App* cmd, std::filesystem::path& in, const std::string& description);
+//! The required -o,--output.
+void add_output(CLI::App* cmd, std::filesystem::path& out, const std::string& description);
+//! --landmarks: a landmark file to use instead of detecting them.
+void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks);
 void add_write_options(CLI::App* cmd, formats::WriteOptions& write);
 
 //! How a scan becomes curves: landmarks given or detected, and the slicing options.

@@ -17,15 +17,13 @@ struct ProfilesArgs {
 };
 
 int run_profiles(const ProfilesArgs& args) {
-  Result<formats::LoadedMesh> scan = read_scan(args.in);
-  if (!scan) return fail(scan.error());
-  Result<align::LandmarkSource> landmarks = landmark_source(args.curves.landmarks);
-  if (!landmarks) return fail(landmarks.error());
+  Result<ScanAndLandmarks> input = read_scan_and_landmarks(args.in, args.curves.landmarks);
+  if (!input) return fail(input.error());
   Result<compare::ProfilesOutcome> made =
-      compare::profiles_request(scan->mesh, {.landmarks = *std::move(landmarks),
-                                             .profiles = args.curves.profile_options(),
-                                             .svg = !args.svg.empty(),
-                                             .source = args.in.string()});
+      compare::profiles_request(input->scan.mesh, {.landmarks = std::move(input->landmarks),
+                                                   .profiles = args.curves.profile_options(),
+                                                   .svg = !args.svg.empty(),
+                                                   .source = args.in.string()});
   if (!made) return fail(made.error());
   std::vector<OutputFile> outputs{{args.out, made->json}};
   if (!args.svg.empty()) outputs.push_back({args.svg, made->svg});
@@ -50,7 +48,7 @@ void profiles_command(CLI::App& app, int& status) {
       "Slice a scan into the paper's profile curves (28 by default), holes filled, fit and sample "
       "them, and extract the 4 evaluation profiles; JSON out, SVG picture optional");
   add_input(cmd, args->in, "Scan (any readable format, mesh or point cloud)");
-  cmd->add_option("-o,--output", args->out, "Profiles to write as JSON")->required();
+  add_output(cmd, args->out, "Profiles to write as JSON");
   cmd->add_option("--svg", args->svg,
                   "Also write a picture: the curves over the face, and the symmetry profile before and after "
                   "fitting");

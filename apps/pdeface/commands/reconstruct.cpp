@@ -44,12 +44,10 @@ void print_fidelity(const compare::ReconstructOutcome& made) {
 }
 
 int run_reconstruct(const ReconstructArgs& args) {
-  Result<formats::LoadedMesh> scan = read_scan(args.in);
-  if (!scan) return fail(scan.error());
-  Result<align::LandmarkSource> landmarks = landmark_source(args.curves.landmarks);
-  if (!landmarks) return fail(landmarks.error());
+  Result<ScanAndLandmarks> input = read_scan_and_landmarks(args.in, args.curves.landmarks);
+  if (!input) return fail(input.error());
   compare::ReconstructRequest request{
-      .landmarks = *std::move(landmarks),
+      .landmarks = std::move(input->landmarks),
       .options = {.profiles = args.curves.profile_options(), .pde = args.surface.pde_options()},
       .profiles_json = !args.profiles.empty(),
       .preview = !args.preview.empty(),
@@ -57,7 +55,7 @@ int run_reconstruct(const ReconstructArgs& args) {
   if (args.resolution.size() == 1) request.options.resolution = compare::Resolution{0, args.resolution[0]};
   if (args.resolution.size() == 2)
     request.options.resolution = compare::Resolution{args.resolution[0], args.resolution[1]};
-  Result<compare::ReconstructOutcome> made = compare::reconstruct_request(scan->mesh, request);
+  Result<compare::ReconstructOutcome> made = compare::reconstruct_request(input->scan.mesh, request);
   if (!made) return fail(made.error());
 
   // Everything is encoded before anything is written, and written as a set: a failure (an unknown output
@@ -94,7 +92,7 @@ void reconstruct_command(CLI::App& app, int& status) {
                                      "Scan -> aligned -> profile curves -> PDE surface, written as a mesh in "
                                      "the scan's frame and units; prints how far it lies from the scan");
   add_input(cmd, args->in, "Scan (any readable format, mesh or point cloud)");
-  cmd->add_option("-o,--output", args->out, "Surface mesh to write (.glb .obj .ply .wrl ...)")->required();
+  add_output(cmd, args->out, "Surface mesh to write (.glb .obj .ply .wrl ...)");
   cmd->add_option("--profiles", args->profiles, "Also write the curves as JSON");
   cmd->add_option("--preview", args->preview,
                   "Also write an SVG: the scan and the reconstruction side by side, and turned");

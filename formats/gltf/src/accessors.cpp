@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <limits>
 
 namespace pdeface::gltf {
 
@@ -47,25 +48,20 @@ template <class T> T load(const unsigned char* p) {
   return v;
 }
 
-// A component as glTF defines it: normalised integers map to [0, 1] or [-1, 1].
+// An integer component; normalised, the integer range maps to [0, 1] (unsigned) or [-1, 1] (signed, the
+// lowest value clamped), as glTF defines it.
+template <class Int> float integer_component(const unsigned char* p, bool normalized) {
+  const auto v = static_cast<float>(load<Int>(p));
+  return normalized ? std::max(v / static_cast<float>(std::numeric_limits<Int>::max()), -1.0f) : v;
+}
+
+// A component as glTF defines it.
 float to_float(const unsigned char* p, int type, bool normalized) {
   switch (type) {
-  case TINYGLTF_COMPONENT_TYPE_BYTE: {
-    const auto v = static_cast<float>(load<std::int8_t>(p));
-    return normalized ? std::max(v / 127.0f, -1.0f) : v;
-  }
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
-    const auto v = static_cast<float>(load<std::uint8_t>(p));
-    return normalized ? v / 255.0f : v;
-  }
-  case TINYGLTF_COMPONENT_TYPE_SHORT: {
-    const auto v = static_cast<float>(load<std::int16_t>(p));
-    return normalized ? std::max(v / 32767.0f, -1.0f) : v;
-  }
-  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-    const auto v = static_cast<float>(load<std::uint16_t>(p));
-    return normalized ? v / 65535.0f : v;
-  }
+  case TINYGLTF_COMPONENT_TYPE_BYTE: return integer_component<std::int8_t>(p, normalized);
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return integer_component<std::uint8_t>(p, normalized);
+  case TINYGLTF_COMPONENT_TYPE_SHORT: return integer_component<std::int16_t>(p, normalized);
+  case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return integer_component<std::uint16_t>(p, normalized);
   default: return load<float>(p);
   }
 }

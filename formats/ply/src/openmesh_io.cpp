@@ -15,6 +15,7 @@
 #include <exception>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 namespace pdeface::ply::detail {
@@ -162,7 +163,20 @@ OpenMesh::Vec4uc to_bytes(const Vec4f& c) {
   return {byte(c[0]), byte(c[1]), byte(c[2]), byte(c[3])};
 }
 
-class MeshExporter final : public OpenMesh::IO::BaseExporter {
+// Our meshes colour only their vertices: every other element (faces, edges) has no colour and no status.
+// One layer of these per element kind, over `Base`.
+template <class Handle, class Base> class Uncoloured : public Base {
+public:
+  OpenMesh::Vec3uc color(Handle) const override { return OpenMesh::Vec3uc(0, 0, 0); }
+  OpenMesh::Vec4uc colorA(Handle) const override { return OpenMesh::Vec4uc(0, 0, 0, 0); }
+  OpenMesh::Vec3ui colori(Handle) const override { return OpenMesh::Vec3ui(0, 0, 0); }
+  OpenMesh::Vec4ui colorAi(Handle) const override { return OpenMesh::Vec4ui(0, 0, 0, 0); }
+  OpenMesh::Vec3f colorf(Handle) const override { return OpenMesh::Vec3f(0, 0, 0); }
+  OpenMesh::Vec4f colorAf(Handle) const override { return OpenMesh::Vec4f(0, 0, 0, 0); }
+  StatusInfo status(Handle) const override { return {}; }
+};
+
+class MeshExporter final : public Uncoloured<EdgeHandle, Uncoloured<FaceHandle, OpenMesh::IO::BaseExporter>> {
 public:
   MeshExporter(const Mesh& mesh, const OpenMeshWrite& how) : mesh_(mesh), how_(how) {}
 
@@ -232,20 +246,6 @@ public:
   StatusInfo status(VertexHandle) const override { return {}; }
   HalfedgeHandle getHeh(FaceHandle, VertexHandle) const override { return HalfedgeHandle(); }
   unsigned int get_face_texcoords(std::vector<OpenMesh::Vec2f>&) const override { return 0; }
-  OpenMesh::Vec3uc color(FaceHandle) const override { return OpenMesh::Vec3uc(0, 0, 0); }
-  OpenMesh::Vec4uc colorA(FaceHandle) const override { return OpenMesh::Vec4uc(0, 0, 0, 0); }
-  OpenMesh::Vec3ui colori(FaceHandle) const override { return OpenMesh::Vec3ui(0, 0, 0); }
-  OpenMesh::Vec4ui colorAi(FaceHandle) const override { return OpenMesh::Vec4ui(0, 0, 0, 0); }
-  OpenMesh::Vec3f colorf(FaceHandle) const override { return OpenMesh::Vec3f(0, 0, 0); }
-  OpenMesh::Vec4f colorAf(FaceHandle) const override { return OpenMesh::Vec4f(0, 0, 0, 0); }
-  StatusInfo status(FaceHandle) const override { return {}; }
-  OpenMesh::Vec3uc color(EdgeHandle) const override { return OpenMesh::Vec3uc(0, 0, 0); }
-  OpenMesh::Vec4uc colorA(EdgeHandle) const override { return OpenMesh::Vec4uc(0, 0, 0, 0); }
-  OpenMesh::Vec3ui colori(EdgeHandle) const override { return OpenMesh::Vec3ui(0, 0, 0); }
-  OpenMesh::Vec4ui colorAi(EdgeHandle) const override { return OpenMesh::Vec4ui(0, 0, 0, 0); }
-  OpenMesh::Vec3f colorf(EdgeHandle) const override { return OpenMesh::Vec3f(0, 0, 0); }
-  OpenMesh::Vec4f colorAf(EdgeHandle) const override { return OpenMesh::Vec4f(0, 0, 0, 0); }
-  StatusInfo status(EdgeHandle) const override { return {}; }
   int get_halfedge_id(VertexHandle) override { return -1; }
   int get_halfedge_id(FaceHandle) override { return -1; }
   int get_next_halfedge_id(HalfedgeHandle) override { return -1; }
@@ -261,22 +261,11 @@ private:
   OpenMesh::BaseKernel kernel_;
 };
 
-std::string describe(std::string_view what, const std::string& log) {
-  return log.empty() ? std::string(what) : fmt::format("{} (OpenMesh: {})", what, log);
-}
-
-} // namespace
-
-Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::string_view source,
-                           Notes* notes) {
+// Runs one OpenMesh read or write, `call` (which returns OpenMesh's success flag): alone, as OpenMesh needs,
+// with its log and its exceptions caught. Nothing on success; else why it failed (the exception's message,
+// or `failed` when it only returned false) with what OpenMesh logged.
+template <class Call> std::optional<std::string> run_openmesh(std::string_view failed, Call&& call) {
   capture_openmesh_log();
-  SoupImporter importer(bytes.size());
-  OpenMesh::IO::Options options =
-      OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexColor |
-      OpenMesh::IO::Options::VertexTexCoord | OpenMesh::IO::Options::ColorAlpha |
-      OpenMesh::IO::Options::FaceColor; // only to note that face colours are dropped
-  if (how.binary) options += OpenMesh::IO::Options::Binary;
-  std::istringstream in(std::move(bytes));
   bool ok = false;
   std::string log;
   std::string failure;
@@ -284,17 +273,34 @@ Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::stri
     const std::scoped_lock lock(openmesh_mutex());
     (void)take_openmesh_log(); // drop what earlier OpenMesh users on this thread left
     try {
-      ok = OpenMesh::IO::IOManager().read(in, std::string(how.extension), importer, options);
-      importer.finish();
+      ok = call();
     } catch (const std::exception& e) {
       failure = e.what();
     }
     log = take_openmesh_log();
   }
-  if (!failure.empty() || !ok)
-    return make_error(ErrorCode::Malformed,
-                      describe(failure.empty() ? "OpenMesh could not read the data" : failure, log),
-                      std::string(source));
+  if (failure.empty() && ok) return std::nullopt;
+  const std::string why = failure.empty() ? std::string(failed) : failure;
+  return log.empty() ? why : fmt::format("{} (OpenMesh: {})", why, log);
+}
+
+} // namespace
+
+Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::string_view source,
+                           Notes* notes) {
+  SoupImporter importer(bytes.size());
+  OpenMesh::IO::Options options =
+      OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexColor |
+      OpenMesh::IO::Options::VertexTexCoord | OpenMesh::IO::Options::ColorAlpha |
+      OpenMesh::IO::Options::FaceColor; // only to note that face colours are dropped
+  if (how.binary) options += OpenMesh::IO::Options::Binary;
+  std::istringstream in(std::move(bytes));
+  const std::optional<std::string> failed = run_openmesh("OpenMesh could not read the data", [&] {
+    const bool ok = OpenMesh::IO::IOManager().read(in, std::string(how.extension), importer, options);
+    importer.finish();
+    return ok;
+  });
+  if (failed) return make_error(ErrorCode::Malformed, *failed, std::string(source));
   if (importer.invalid_faces != 0)
     return make_error(ErrorCode::IndexOutOfRange,
                       fmt::format("{} faces refer to vertices that do not exist", importer.invalid_faces),
@@ -317,7 +323,6 @@ Result<std::string> write_openmesh(const Mesh& mesh, const OpenMeshWrite& how, s
   note_dropped(mesh.has_normals(), how.normals, "normals");
   note_dropped(mesh.has_colors(), how.colors, "vertex colours");
   note_dropped(mesh.has_texcoords(), how.texcoords, "texture coordinates");
-  capture_openmesh_log();
   MeshExporter exporter(mesh, how);
   OpenMesh::IO::Options options;
   if (how.binary) options += OpenMesh::IO::Options::Binary;
@@ -328,23 +333,11 @@ Result<std::string> write_openmesh(const Mesh& mesh, const OpenMeshWrite& how, s
   if (how.texcoords) options += OpenMesh::IO::Options::VertexTexCoord;
   if (how.texcoords) options += OpenMesh::IO::Options::TexCoordST;
   std::ostringstream out;
-  bool ok = false;
-  std::string log;
-  std::string failure;
-  {
-    const std::scoped_lock lock(openmesh_mutex());
-    (void)take_openmesh_log(); // drop what earlier OpenMesh users on this thread left
-    try {
-      constexpr std::streamsize kDigits = 9; // a float32 printed with 9 digits reads back exactly
-      ok = OpenMesh::IO::IOManager().write(out, std::string(how.extension), exporter, options, kDigits);
-    } catch (const std::exception& e) {
-      failure = e.what();
-    }
-    log = take_openmesh_log();
-  }
-  if (!failure.empty() || !ok)
-    return make_error(ErrorCode::Io,
-                      describe(failure.empty() ? "OpenMesh could not write the mesh" : failure, log));
+  const std::optional<std::string> failed = run_openmesh("OpenMesh could not write the mesh", [&] {
+    constexpr std::streamsize kDigits = 9; // a float32 printed with 9 digits reads back exactly
+    return OpenMesh::IO::IOManager().write(out, std::string(how.extension), exporter, options, kDigits);
+  });
+  if (failed) return make_error(ErrorCode::Io, *failed);
   return std::move(out).str();
 }
 

@@ -38,11 +38,7 @@ NodeData ParserV1::parse_body(const Token& type) {
   if (t == "Material") return list_node<Material>("diffuseColor", &Material::diffuse);
   if (t == "NormalBinding" || t == "MaterialBinding") {
     Binding value = Binding::Default;
-    fields([&](const Token& name) {
-      if (name.text != "value") return false;
-      value = read_binding(name.text);
-      return true;
-    });
+    only_field("value", [&] { value = read_binding("value"); });
     if (t == "NormalBinding") return NormalBinding{value};
     return MaterialBinding{value};
   }
@@ -82,51 +78,30 @@ NodeData ParserV1::group(std::string_view type) {
 
 NodeData ParserV1::transform() {
   TransformFields f;
-  fields([&](const Token& name) {
-    const std::string_view n = name.text;
-    if (n == "translation")
-      f.translation = read_vec3(n);
-    else if (n == "rotation")
-      f.rotation = read_rotation(n);
-    else if (n == "scaleFactor")
-      f.scale = read_vec3(n);
-    else if (n == "scaleOrientation")
-      f.scale_orientation = read_rotation(n);
-    else if (n == "center")
-      f.center = read_vec3(n);
-    else
-      return false;
-    return true;
-  });
+  fields([&](const Token& name) { return transform_field(name.text, "scaleFactor", f); });
   return MatrixNode{f.matrix()};
 }
 
 template <class Field> NodeData ParserV1::single_field(std::string_view name, Field read) {
   MatrixNode m;
-  fields([&](const Token& field) {
-    if (field.text != name) return false;
-    m.matrix = read();
-    return true;
-  });
+  only_field(name, [&] { m.matrix = read(); });
   return m;
 }
 
 NodeData ParserV1::matrix_transform() {
   MatrixNode m;
-  fields([&](const Token& name) {
-    if (name.text != "matrix") return false;
+  only_field("matrix", [&] {
     // Inventor's matrices act on row vectors (p' = p·M): the file's rows are our columns, and its last
     // row is the translation. A projective last column cannot be an affine transform.
     const Position at = peek().at;
     Eigen::Matrix4d rows;
     for (int r = 0; r < 4; ++r)
       for (int c = 0; c < 4; ++c)
-        rows(r, c) = read_double(name.text);
+        rows(r, c) = read_double("matrix");
     if (rows.col(3) != Eigen::Vector4d(0, 0, 0, 1))
       context_.note(at, "MatrixTransform: the projective part of the matrix is ignored");
     m.matrix.linear() = rows.topLeftCorner<3, 3>().transpose();
     m.matrix.translation() = rows.row(3).head<3>().transpose();
-    return true;
   });
   return m;
 }
@@ -186,20 +161,12 @@ Binding ParserV1::read_binding(std::string_view field) {
 
 NodeData ParserV1::shape_hints() {
   ShapeHints hints;
-  fields([&](const Token& name) {
-    if (name.text != "vertexOrdering") return false;
-    hints.clockwise = read_word(name.text) == "CLOCKWISE";
-    return true;
-  });
+  only_field("vertexOrdering", [&] { hints.clockwise = read_word("vertexOrdering") == "CLOCKWISE"; });
   return hints;
 }
 
 NodeData ParserV1::info() {
-  fields([&](const Token& name) {
-    if (name.text != "string") return false;
-    take_info(read_strings(name.text));
-    return true;
-  });
+  only_field("string", [&] { take_info(read_strings("string")); });
   return Skipped{};
 }
 

@@ -60,21 +60,8 @@ NodeData ParserV2::transform() {
   TransformFields f;
   Group g;
   fields([&](const Token& name) {
-    const std::string_view n = name.text;
-    if (n == "translation")
-      f.translation = read_vec3(n);
-    else if (n == "rotation")
-      f.rotation = read_rotation(n);
-    else if (n == "scale")
-      f.scale = read_vec3(n);
-    else if (n == "scaleOrientation")
-      f.scale_orientation = read_rotation(n);
-    else if (n == "center")
-      f.center = read_vec3(n);
-    else if (n == "children")
-      g.children = read_mfnode();
-    else
-      return false;
+    if (name.text != "children") return transform_field(name.text, "scale", f);
+    g.children = read_mfnode();
     return true;
   });
   if (const Eigen::Affine3d m = f.matrix(); !m.matrix().isIdentity(0.0)) g.matrix = m;
@@ -83,11 +70,7 @@ NodeData ParserV2::transform() {
 
 NodeData ParserV2::group() {
   Group g;
-  fields([&](const Token& name) {
-    if (name.text != "children") return false;
-    g.children = read_mfnode();
-    return true;
-  });
+  only_field("children", [&] { g.children = read_mfnode(); });
   return g;
 }
 
@@ -110,11 +93,7 @@ NodeData ParserV2::switch_node() {
 
 NodeData ParserV2::lod(const Token& type) {
   std::vector<NodePtr> levels;
-  fields([&](const Token& name) {
-    if (name.text != "level") return false;
-    levels = read_mfnode();
-    return true;
-  });
+  only_field("level", [&] { levels = read_mfnode(); });
   Group g;
   if (!levels.empty()) g.children.push_back(levels.front());
   if (levels.size() > 1)
@@ -124,11 +103,7 @@ NodeData ParserV2::lod(const Token& type) {
 
 NodeData ParserV2::shape() {
   Shape s;
-  fields([&](const Token& name) {
-    if (name.text != "geometry") return false;
-    s.geometry = read_sfnode();
-    return true;
-  });
+  only_field("geometry", [&] { s.geometry = read_sfnode(); });
   return s;
 }
 
@@ -197,11 +172,7 @@ NodeData ParserV2::world_info() {
 
 NodeData ParserV2::inline_node(const Token& type) {
   std::vector<std::string_view> url;
-  fields([&](const Token& name) {
-    if (name.text != "url") return false;
-    url = read_strings(name.text);
-    return true;
-  });
+  only_field("url", [&] { url = read_strings("url"); });
   context_.note(type.at, fmt::format("Inline {} not followed (the reader does not fetch other files)",
                                      url.empty() ? std::string("without url") : unescape(url.front())));
   return Skipped{};

@@ -147,10 +147,7 @@ NodePtr Parser::parse_node(const Token& type) {
 
 void Parser::skip_item(const Token& t) {
   switch (t.kind) {
-  case TokenKind::OpenBracket:
-    for (Token item = next_required("']'"); item.kind != TokenKind::CloseBracket; item = next_required("']'"))
-      skip_item(item);
-    return;
+  case TokenKind::OpenBracket: list_items("']'", [this](const Token& item) { skip_item(item); }); return;
   case TokenKind::OpenBrace: skip_body(); return; // not VRML, but balanced: read past it
   case TokenKind::Word:
     if (other_statement(t)) return;
@@ -164,6 +161,22 @@ void Parser::skip_balanced() {
   const std::size_t depth = open_.size();
   while (open_.size() >= depth)
     (void)next_required("a closing bracket");
+}
+
+bool Parser::transform_field(std::string_view name, std::string_view scale_name, TransformFields& f) {
+  if (name == "translation")
+    f.translation = read_vec3(name);
+  else if (name == "rotation")
+    f.rotation = read_rotation(name);
+  else if (name == scale_name)
+    f.scale = read_vec3(name);
+  else if (name == "scaleOrientation")
+    f.scale_orientation = read_rotation(name);
+  else if (name == "center")
+    f.center = read_vec3(name);
+  else
+    return false;
+  return true;
 }
 
 // --- field values ------------------------------------------------------------------------------------------
@@ -233,34 +246,18 @@ IndexList Parser::read_index_list(std::string_view field) {
 
 std::vector<std::string_view> Parser::read_strings(std::string_view field) {
   std::vector<std::string_view> strings;
-  auto string = [&](const Token& t) {
+  one_or_list("a string", "a string or ']'", [&](const Token& t) {
     if (t.kind != TokenKind::String) fail_expected(fmt::format("a string in {}", field), t);
     strings.push_back(t.text);
-  };
-  const Token first = next_required("a string");
-  if (first.kind != TokenKind::OpenBracket) {
-    string(first);
-    return strings;
-  }
-  for (Token t = next_required("a string or ']'"); t.kind != TokenKind::CloseBracket;
-       t = next_required("a string or ']'"))
-    string(t);
+  });
   return strings;
 }
 
 std::vector<NodePtr> Parser::read_mfnode() {
   std::vector<NodePtr> out;
-  auto add = [&](const Token& t) {
+  one_or_list("a node or '['", "a node or ']'", [&](const Token& t) {
     if (NodePtr node = node_statement(t)) out.push_back(std::move(node));
-  };
-  const Token first = next_required("a node or '['");
-  if (first.kind != TokenKind::OpenBracket) {
-    add(first);
-    return out;
-  }
-  for (Token t = next_required("a node or ']'"); t.kind != TokenKind::CloseBracket;
-       t = next_required("a node or ']'"))
-    add(t);
+  });
   return out;
 }
 

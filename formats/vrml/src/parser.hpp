@@ -71,6 +71,18 @@ protected:
       skip_item(t);
     }
   }
+  //! Reads the fields of the node being parsed to its '}': `read()` reads the one named `field`; every
+  //! other field is skipped.
+  template <class Read> void only_field(std::string_view field, Read&& read) {
+    fields([&](const Token& name) {
+      if (name.text != field) return false;
+      read();
+      return true;
+    });
+  }
+  //! Reads `name` into `f` if it is one of a transform's fields (the scale's is `scale_name`:
+  //! scaleFactor in VRML 1.0, scale in 2.0); false if it is not.
+  bool transform_field(std::string_view name, std::string_view scale_name, TransformFields& f);
   //! Skips the rest of a node body we do not read.
   void skip_body() {
     fields([](const Token&) { return false; });
@@ -80,6 +92,22 @@ protected:
   //! Skips tokens up to the closer of the bracket just read, without interpreting them (PROTO
   //! interfaces and bodies, whose names are the PROTO's own).
   void skip_balanced();
+  //! Reads the items of a list whose '[' was just read, to its ']': `item(token)` for each; `expected`
+  //! names what may come next in errors.
+  template <class Item> void list_items(std::string_view expected, Item&& item) {
+    for (Token t = next_required(expected); t.kind != TokenKind::CloseBracket; t = next_required(expected))
+      item(t);
+  }
+  //! A value that is one item, or a bracketed list of them: `item(token)` for each. `expected` names what
+  //! may come first, `expected_in_list` what may come inside the list.
+  template <class Item>
+  void one_or_list(std::string_view expected, std::string_view expected_in_list, Item&& item) {
+    const Token first = next_required(expected);
+    if (first.kind == TokenKind::OpenBracket)
+      list_items(expected_in_list, item);
+    else
+      item(first);
+  }
 
   // --- field values (the field's name was just read; `field` names it in errors) -----------------------
   double read_double(std::string_view field) { return number<double>(next_required("a number"), field); }
@@ -174,11 +202,7 @@ template <class Vector> std::vector<Vector> Parser::read_vectors(std::string_vie
 template <class Data, class Vector>
 NodeData Parser::list_node(std::string_view field, std::vector<Vector> Data::*list) {
   Data data;
-  fields([&](const Token& name) {
-    if (name.text != field) return false;
-    data.*list = read_vectors<Vector>(field);
-    return true;
-  });
+  only_field(field, [&] { data.*list = read_vectors<Vector>(field); });
   return data;
 }
 

@@ -193,14 +193,8 @@ TEST(ObjWrite, PrecisionAndAlpha) {
 // ---- bad input ----------------------------------------------------------------------------------------
 
 TEST(ObjReadErrors, EveryClassWithItsLineAndColumn) {
-  struct Case {
-    std::string text;
-    ErrorCode code;
-    std::uint64_t line;
-    std::uint64_t column;
-  };
   const std::string t(kTriangle);
-  const std::vector<Case> cases{
+  const std::vector<ErrorCase> cases{
       {"", ErrorCode::Empty, 0, 0},
       {"# nothing\ng empty\n", ErrorCode::Empty, 0, 0},
       {"v 1 abc 3\n", ErrorCode::Malformed, 1, 5},
@@ -225,12 +219,7 @@ TEST(ObjReadErrors, EveryClassWithItsLineAndColumn) {
       {t + "f 1//1 2//1 3//1\n", ErrorCode::IndexOutOfRange, 4, 3},
       {t + "v 1 1 \0 0\n"s, ErrorCode::Malformed, 4, 7},
   };
-  for (const Case& c : cases) {
-    const Error e = error_of(read_obj(c.text));
-    EXPECT_EQ(e.code, c.code) << c.text << ": " << e.message;
-    EXPECT_EQ(e.where.line, c.line) << c.text << ": " << e.message;
-    EXPECT_EQ(e.where.column, c.column) << c.text << ": " << e.message;
-  }
+  expect_errors_at(obj::read, "t.obj", cases);
 }
 
 TEST(ObjReadErrors, FaceWithMoreCornersThanTinyobjloaderCounts) {

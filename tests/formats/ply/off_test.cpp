@@ -81,13 +81,7 @@ TEST(OffWrite, RealScanRoundTrip) {
 // ---- bad input ----------------------------------------------------------------------------------------
 
 TEST(OffReadErrors, EveryClassWithItsLocation) {
-  struct Case {
-    std::string text;
-    ErrorCode code;
-    std::uint64_t line;
-    std::uint64_t column;
-  };
-  const std::vector<Case> cases{
+  const std::vector<ErrorCase> cases{
       {"", ErrorCode::Empty, 0, 0},
       {"  \n# only a comment\n", ErrorCode::Empty, 0, 0},
       {"PLY\n3 1 0\n", ErrorCode::BadMagic, 1, 1},
@@ -112,13 +106,7 @@ TEST(OffReadErrors, EveryClassWithItsLocation) {
       {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1", ErrorCode::Truncated, 5, 4},
       {"OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n255 0 1 2\n", ErrorCode::Truncated, 7, 1},
   };
-  for (const Case& c : cases) {
-    const Error e = error_of(read_off(c.text));
-    EXPECT_EQ(e.code, c.code) << c.text << ": " << e.message;
-    EXPECT_EQ(e.where.line, c.line) << c.text;
-    EXPECT_EQ(e.where.column, c.column) << c.text;
-    EXPECT_EQ(e.source, "t.off");
-  }
+  expect_errors_at(off::read, "t.off", cases);
 }
 
 // Every prefix of a file is an error or a valid mesh, never a crash or a hang.

@@ -25,17 +25,24 @@ Mesh round_trip(const Mesh& mesh, bool binary, std::string* bytes_out = nullptr)
 
 std::string header_of(const std::string& bytes) { return bytes.substr(0, bytes.find("end_header")); }
 
+// The sample face written and read back: geometry, normals, colours (to 8 bits) and units (mm) survive.
+// Returns the bytes written.
+std::string expect_sample_face_round_trip(const Mesh& mesh, bool binary) {
+  std::string bytes;
+  const Mesh read = round_trip(mesh, binary, &bytes);
+  expect_same_geometry(mesh, read);
+  EXPECT_EQ(read.normals, mesh.normals);
+  EXPECT_EQ(read.colors, byte_rounded(mesh.colors));
+  EXPECT_EQ(read.units, Units::Millimetres);
+  return bytes;
+}
+
 } // namespace
 
 // The sample face states its units (mm), has normals and colours.
 TEST(PlyWrite, SampleFaceBinaryRoundTrip) {
   const Mesh mesh = sample_face();
-  std::string bytes;
-  const Mesh read = round_trip(mesh, true, &bytes);
-  expect_same_geometry(mesh, read);
-  EXPECT_EQ(read.normals, mesh.normals);
-  EXPECT_EQ(read.colors, byte_rounded(mesh.colors));
-  EXPECT_EQ(read.units, Units::Millimetres);
+  const std::string bytes = expect_sample_face_round_trip(mesh, true);
   const std::string header = header_of(bytes);
   EXPECT_NE(header.find("format binary_little_endian 1.0\ncomment units mm\n"), std::string::npos) << header;
   EXPECT_NE(header.find("property float x\n"), std::string::npos) << "float32 positions, not double";
@@ -48,13 +55,7 @@ TEST(PlyWrite, SampleFaceBinaryRoundTrip) {
 }
 
 TEST(PlyWrite, SampleFaceAsciiRoundTrip) {
-  const Mesh mesh = sample_face();
-  std::string bytes;
-  const Mesh read = round_trip(mesh, false, &bytes);
-  expect_same_geometry(mesh, read);
-  EXPECT_EQ(read.normals, mesh.normals);
-  EXPECT_EQ(read.colors, byte_rounded(mesh.colors));
-  EXPECT_EQ(read.units, Units::Millimetres);
+  const std::string bytes = expect_sample_face_round_trip(sample_face(), false);
   EXPECT_NE(bytes.find("format ascii 1.0\ncomment units mm\n"), std::string::npos);
 }
 

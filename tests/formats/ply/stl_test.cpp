@@ -171,13 +171,7 @@ TEST(StlReadErrors, AsciiWithItsLineAndColumn) {
     text.replace(text.find(from), from.size(), to);
     return text;
   };
-  struct Case {
-    std::string text;
-    ErrorCode code;
-    std::uint64_t line;
-    std::uint64_t column;
-  };
-  const std::vector<Case> cases{
+  const std::vector<ErrorCase> cases{
       {replaced("vertex 1 0 0", "vertex 1 nan 0"), ErrorCode::NonFinite, 5, 16},
       {replaced("vertex 1 0 0", "vertex 1 1e39 0"), ErrorCode::NonFinite, 5, 16},
       {replaced("vertex 1 0 0", "vertex 1 abc 0"), ErrorCode::Malformed, 5, 16},
@@ -187,12 +181,7 @@ TEST(StlReadErrors, AsciiWithItsLineAndColumn) {
       {good.substr(0, good.find("vertex 1 0 0") + 10), ErrorCode::Truncated, 5, 17},
       {"solid nothing\nfacet normal 0 0 1\n", ErrorCode::Truncated, 3, 1},
   };
-  for (const Case& c : cases) {
-    const Error e = error_of(read_stl(c.text));
-    EXPECT_EQ(e.code, c.code) << c.text << e.message;
-    EXPECT_EQ(e.where.line, c.line) << c.text;
-    EXPECT_EQ(e.where.column, c.column) << c.text;
-  }
+  expect_errors_at(stl::read, "t.stl", cases);
 }
 
 TEST(StlReadErrors, NothingIsPrinted) {

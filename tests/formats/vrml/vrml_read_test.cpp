@@ -112,10 +112,10 @@ TEST(VrmlRead, SkipsProtosRoutesScriptsAndEverythingElseItDoesNotNeed) {
   EXPECT_EQ(mesh.triangle_count(), 1U);
   EXPECT_EQ(mesh.units, Units::Millimetres);
   EXPECT_EQ(mesh.name, "skip \"everything\" {");
-  EXPECT_TRUE(has_note(notes, "v2_skipped.wrl:25:1: Inline other.wrl not followed"));
-  EXPECT_TRUE(has_note(notes, "v2_skipped.wrl:26:1: instance of PROTO Face skipped"));
-  EXPECT_TRUE(has_note(notes, "v2_skipped.wrl:27:1: instance of PROTO Marker skipped"));
-  EXPECT_TRUE(has_note(notes, "Shape geometry Sphere ignored"));
+  EXPECT_TRUE(has_notes(notes, {"v2_skipped.wrl:25:1: Inline other.wrl not followed",
+                                "v2_skipped.wrl:26:1: instance of PROTO Face skipped",
+                                "v2_skipped.wrl:27:1: instance of PROTO Marker skipped",
+                                "Shape geometry Sphere ignored"}));
 }
 
 TEST(VrmlRead, EveryGroupingNodeDrawsWhatItShould) {
@@ -125,8 +125,8 @@ TEST(VrmlRead, EveryGroupingNodeDrawsWhatItShould) {
   // One copy of T per height 0..6, in file order; nothing from the choices not taken.
   for (std::size_t i = 0; i < 7; ++i)
     expect_near(mesh.positions[3 * i], Vec3(0, 0, static_cast<double>(i)));
-  EXPECT_TRUE(has_note(notes, "LOD: the first (finest) of its 2 levels is read"));
-  EXPECT_TRUE(has_note(notes, "Billboard: its rotation towards the viewer is not applied"));
+  EXPECT_TRUE(has_notes(notes, {"LOD: the first (finest) of its 2 levels is read",
+                                "Billboard: its rotation towards the viewer is not applied"}));
 }
 
 TEST(VrmlRead, KeepsAttributesThatMapOneToOneOntoVertices) {
@@ -257,8 +257,8 @@ Shape { geometry PointSet { coord Coordinate { point [ 1 2 3 ] } } }
                                       &notes);
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->vertex_count(), 1U);
-  EXPECT_TRUE(has_note(notes, "test.wrl:3:41: instance of PROTO MyCoords skipped"));
-  EXPECT_TRUE(has_note(notes, "IndexedFaceSet without coord skipped"));
+  EXPECT_TRUE(has_notes(
+      notes, {"test.wrl:3:41: instance of PROTO MyCoords skipped", "IndexedFaceSet without coord skipped"}));
 }
 
 TEST(VrmlRead, DefInsideASkippedNodeCanBeUsedLater) {
@@ -343,8 +343,8 @@ Separator {
                                       &notes);
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_FALSE(mesh->has_normals() || mesh->has_colors());
-  EXPECT_TRUE(has_note(notes, "test.wrl:6:3: normals dropped: NormalBinding PER_FACE is not per vertex"));
-  EXPECT_TRUE(has_note(notes, "colours dropped: MaterialBinding PER_FACE_INDEXED is not per vertex"));
+  EXPECT_TRUE(has_notes(notes, {"test.wrl:6:3: normals dropped: NormalBinding PER_FACE is not per vertex",
+                                "colours dropped: MaterialBinding PER_FACE_INDEXED is not per vertex"}));
   EXPECT_EQ(notes.size(), 3U); // normals once per face set, nothing for the OVERALL material
 }
 

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <initializer_list>
 #include <string>
 #include <string_view>
 
@@ -43,6 +44,23 @@ inline ::testing::AssertionResult has_note(const Notes& notes, std::string_view 
                   [&](const std::string& n) { return n.find(text) != std::string::npos; }))
     return ::testing::AssertionSuccess();
   auto failure = ::testing::AssertionFailure() << "no note contains '" << text << "'; notes:";
+  for (const std::string& n : notes)
+    failure << "\n  " << n;
+  return failure;
+}
+
+//! Each of `texts` is contained in some note.
+inline ::testing::AssertionResult has_notes(const Notes& notes,
+                                            std::initializer_list<std::string_view> texts) {
+  bool all = true;
+  auto failure = ::testing::AssertionFailure();
+  for (std::string_view text : texts)
+    if (!has_note(notes, text)) {
+      all = false;
+      failure << "no note contains '" << text << "'\n";
+    }
+  if (all) return ::testing::AssertionSuccess();
+  failure << "notes:";
   for (const std::string& n : notes)
     failure << "\n  " << n;
   return failure;

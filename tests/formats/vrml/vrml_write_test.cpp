@@ -2,6 +2,8 @@
 
 #include "vrml_test_support.hpp"
 
+#include "test_meshes.hpp"
+
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 
@@ -75,21 +77,14 @@ TEST(VrmlWrite, PointCloudBecomesAPointSet) {
   EXPECT_FALSE(back.has_normals());
 }
 
-Mesh quad() {
-  Mesh mesh;
-  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
-  return mesh;
-}
-
 TEST(VrmlWrite, TextureCoordinatesRoundTrip) {
-  Mesh mesh = quad();
+  Mesh mesh = unit_square();
   mesh.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0.25F, 0.75F}};
   EXPECT_EQ(round_trip(mesh).texcoords, mesh.texcoords);
 }
 
 TEST(VrmlWrite, AlphaIsDroppedWithANote) {
-  Mesh mesh = quad();
+  Mesh mesh = unit_square();
   mesh.colors.assign(4, Vec4f(1, 0.5F, 0, 0.5F));
   Notes notes;
   const Mesh back = round_trip(mesh, {}, &notes);
@@ -98,7 +93,7 @@ TEST(VrmlWrite, AlphaIsDroppedWithANote) {
 }
 
 TEST(VrmlWrite, WritesAVrml2ShapeAndStatesOnlyWhatIsKnown) {
-  Mesh mesh = quad();
+  Mesh mesh = unit_square();
   Result<std::string> bytes = vrml::write(mesh);
   ASSERT_TRUE(bytes.ok());
   EXPECT_TRUE(bytes->starts_with("#VRML V2.0 utf8\n"));
@@ -115,13 +110,13 @@ TEST(VrmlWrite, WritesAVrml2ShapeAndStatesOnlyWhatIsKnown) {
 }
 
 TEST(VrmlWrite, RejectsBadOptionsAndBadMeshes) {
-  EXPECT_EQ(vrml::write(quad(), {.precision = 0}).error().code, ErrorCode::InvalidArgument);
-  EXPECT_EQ(vrml::write(quad(), {.precision = 18}).error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(vrml::write(unit_square(), {.precision = 0}).error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(vrml::write(unit_square(), {.precision = 18}).error().code, ErrorCode::InvalidArgument);
   EXPECT_EQ(vrml::write(Mesh{}).error().code, ErrorCode::Empty);
-  Mesh bad = quad();
+  Mesh bad = unit_square();
   bad.triangles.push_back({0, 1, 4});
   EXPECT_EQ(vrml::write(bad).error().code, ErrorCode::IndexOutOfRange);
-  bad = quad();
+  bad = unit_square();
   bad.positions[1].y() = std::numeric_limits<double>::quiet_NaN();
   EXPECT_EQ(vrml::write(bad).error().code, ErrorCode::NonFinite);
 }
