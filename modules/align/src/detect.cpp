@@ -205,7 +205,8 @@ std::vector<Plane> global_planes(const Scene& s, int directions, std::size_t cou
   const double distinct = std::cos(0.17); // 10 degrees
   std::vector<std::pair<double, Plane>> rough;
   std::vector<Vec3> tried;
-  for (const auto& [rms, n] : scored) {
+  for (const auto& entry : scored) {
+    const Vec3& n = entry.second;
     if (tried.size() == 16) break;
     if (std::ranges::any_of(tried, [&](const Vec3& t) { return std::abs(t.dot(n)) > distinct; })) continue;
     tried.push_back(n);
@@ -215,7 +216,8 @@ std::vector<Plane> global_planes(const Scene& s, int directions, std::size_t cou
   }
   std::ranges::sort(rough, {}, &std::pair<double, Plane>::first);
   std::vector<Plane> planes;
-  for (const auto& [rms, seed] : rough) {
+  for (const auto& entry : rough) {
+    const Plane& seed = entry.second;
     if (planes.size() == count) break;
     if (std::ranges::any_of(planes,
                             [&](const Plane& q) { return std::abs(q.normal.dot(seed.normal)) > distinct; }))

@@ -98,7 +98,8 @@ Extents curve_extents(std::span<const Section> cuts, std::span<const ProfilePlan
     relax(j, j + 1);
   // An end moved into a hole of its own surface moves on to the surface beyond it.
   for (std::size_t j = 0; j < planes.size(); ++j) {
-    auto& [lo, hi] = out.extent[j];
+    double& lo = out.extent[j][0];
+    double& hi = out.extent[j][1];
     if (lo > out.surface[j][0] && !section_at(cuts[j], axes, lo))
       if (const auto next = std::ranges::find_if(cuts[j].cover, [&](const auto& c) { return c[0] > lo; });
           next != cuts[j].cover.end())

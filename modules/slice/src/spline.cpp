@@ -27,7 +27,7 @@ Basis basis(double t, std::size_t n) {
   };
   const double x = t * static_cast<double>(spans);
   const auto i = static_cast<std::ptrdiff_t>(span) + 3; // knot[i] <= x < knot[i + 1]
-  std::array<double, 4> N{1.0, 0.0, 0.0, 0.0};
+  std::array<double, 4> weights{1.0, 0.0, 0.0, 0.0};
   std::array<double, 4> left{}, right{};
   for (std::size_t d = 1; d <= 3; ++d) {
     left[d] = x - knot(i + 1 - static_cast<std::ptrdiff_t>(d));
@@ -35,13 +35,13 @@ Basis basis(double t, std::size_t n) {
     double saved = 0.0;
     for (std::size_t r = 0; r < d; ++r) {
       const double denom = right[r + 1] + left[d - r];
-      const double temp = denom == 0.0 ? 0.0 : N[r] / denom;
-      N[r] = saved + right[r + 1] * temp;
+      const double temp = denom == 0.0 ? 0.0 : weights[r] / denom;
+      weights[r] = saved + right[r + 1] * temp;
       saved = left[d - r] * temp;
     }
-    N[d] = saved;
+    weights[d] = saved;
   }
-  return {span, N};
+  return {span, weights};
 }
 
 // Solves the symmetric positive definite band system (half-bandwidth 3) in place by Cholesky.
