@@ -134,6 +134,32 @@ TEST(Profile, PointCloudHolesAreRealHolesOnly) {
   EXPECT_LT(p->longest_bridge, 7.0);
 }
 
+TEST(Profile, PointCloudLayerBehindAGapIsHidden) {
+  // A sparse cloud whose front surface has no points in the slab over 10 mm of height (a scanner's gap,
+  // or a side of the face sampled more coarsely than the median), with another layer 100 mm behind it
+  // everywhere (the far side of a head): there the section has a gap, not the layer behind.
+  Mesh cloud;
+  for (double y = -60.0; y <= 60.0; y += 1.0)
+    for (double x = -20.0; x <= 20.0; x += 1.0) {
+      if (!(std::abs(x - 5.0) < 4.0 && y > 0.0 && y < 10.0)) cloud.positions.push_back({x, y, f(x, y)});
+      cloud.positions.push_back({x, y, f(x, y) - 100.0});
+    }
+  const Section s = cloud_section(cloud.positions, Plane{Vec3::UnitX(), 5.0}, {}, 1.0);
+  for (const Vec3& q : s.points)
+    EXPECT_NEAR(q.z(), f(5.0, q.y()), 0.5) << "y = " << q.y(); // only the front layer
+  Result<Profile> p = clip(s, {}, -50.0, 50.0, {.max_gap_mm = 20.0});
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ(p->bridged, 1U);
+  EXPECT_GT(p->longest_bridge, 6.0);
+  // Nearer than the hidden depth (20 mm), a recess between two fronts is surface: an eye socket.
+  Mesh socket;
+  for (double y = -60.0; y <= 60.0; y += 1.0)
+    for (double x = -20.0; x <= 20.0; x += 1.0)
+      socket.positions.push_back({x, y, f(x, y) - (std::abs(y - 5.0) < 5.0 ? 12.0 : 0.0)});
+  const Section eye = cloud_section(socket.positions, Plane{Vec3::UnitX(), 5.0}, {}, 1.0);
+  EXPECT_TRUE(std::ranges::any_of(eye.points, [](const Vec3& q) { return q.z() < f(5.0, q.y()) - 11.0; }));
+}
+
 TEST(Profile, CoveredExtentBridgesShortGaps) {
   Section s;
   s.cover = {{-50, -20}, {-15, 10}, {30, 60}};

@@ -175,9 +175,26 @@ Section cloud_section(std::span<const Vec3> points, const Plane& plane, const Pr
   std::vector<double> front(bins, -kInf);
   for (const Near& q : slab)
     front[bin_of(q.u)] = std::max(front[bin_of(q.u)], q.w);
+  // Where a sparse cloud has no point of the front surface in the slab at some height, the bin's front is
+  // a layer far behind (an ear, the far side of the head, the inside of the mouth): with the front surface
+  // on both sides of it, close above and below, it is hidden from the viewer, and the bin is a gap.
+  const double reach = options.hidden_reach_mm, depth = options.hidden_depth_mm;
+  const auto front_near = [&](std::size_t b, int dir) {
+    double best = -kInf;
+    for (std::size_t n = b; (dir < 0 ? n > 0 : n + 1 < bins);) {
+      n = dir < 0 ? n - 1 : n + 1;
+      if (static_cast<double>(dir < 0 ? b - n : n - b) * spacing > reach) break;
+      best = std::max(best, front[n]);
+    }
+    return best;
+  };
+  std::vector<bool> hidden(bins, false);
+  for (std::size_t b = 0; b < bins; ++b)
+    hidden[b] =
+        front[b] > -kInf && front_near(b, -1) > front[b] + depth && front_near(b, +1) > front[b] + depth;
   std::vector<std::vector<const Near*>> members(bins);
   for (const Near& q : slab)
-    if (q.w >= front[bin_of(q.u)] - 3.0 * spacing) members[bin_of(q.u)].push_back(&q);
+    if (!hidden[bin_of(q.u)] && q.w >= front[bin_of(q.u)] - 3.0 * spacing) members[bin_of(q.u)].push_back(&q);
 
   // One point per bin: z ≈ a + b·d + c·(u − u_bin) fitted to the bin and its neighbours, taken at d = 0.
   // Cover: half a spacing about each bin's point; points no further apart than the slab is wide are one

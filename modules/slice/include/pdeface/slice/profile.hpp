@@ -27,6 +27,12 @@ struct SectionOptions {
   double max_gap_mm = 8.0;  //!< holes up to this long (along the profile's axis) are bridged linearly
   double slab_factor = 1.5; //!< point clouds: half-width of the slab, in median point spacings
   double spacing_mm = 0.0;  //!< point clouds: the median point spacing (0: measured by `sections`)
+  //! Point clouds: a height whose front-most points lie more than `hidden_depth_mm` behind the front within
+  //! `hidden_reach_mm` both above and below is hidden (a sparse cloud's front surface missed by the slab,
+  //! an ear or the far side of the head behind it): a gap, not the profile. Deeper than eye sockets and
+  //! the lip under the nose (the nose is in front on one side only).
+  double hidden_depth_mm = 20.0;
+  double hidden_reach_mm = 10.0;
 };
 
 //! What the front of one plane shows: the visible points ordered along the profile's axis, and where
@@ -42,7 +48,8 @@ struct Section {
 [[nodiscard]] Section mesh_section(std::span<const Polyline> cut, const ProfileAxes& axes);
 
 //! The same for a point cloud: the points within `slab_factor · spacing` of `plane`, projected onto it,
-//! the front-most layer kept (points more than 3 spacings behind the front of their neighbourhood go)
+//! the front-most layer kept (points more than 3 spacings behind the front of their neighbourhood go, and
+//! heights whose front lies far behind the front above and below them are gaps: `hidden_depth_mm`)
 //! and thinned to one point per `spacing` of height (a local linear fit in height and distance to the
 //! plane, evaluated on the plane). `spacing` is the median nearest-neighbour distance of the cloud. The
 //! cover is half a spacing about each point, and points no further apart than the slab is wide
