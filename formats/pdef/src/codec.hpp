@@ -1,0 +1,61 @@
+#pragma once
+// What the encoder and decoder share: the format's constants, the lossy grid and the samples as integers
+// on it, and the prediction that turns them into small residuals.
+
+#include "pdeface/pdef/pdef.hpp"
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pdeface::pdef::detail {
+
+inline constexpr std::uint8_t kVersion = 1;
+inline constexpr std::uint8_t kFlagLossless = 0x01;
+inline constexpr std::uint8_t kKnownFlags = kFlagLossless;
+inline constexpr std::size_t kHeaderBytes = 10; // magic, version, flags, length
+inline constexpr std::size_t kChecksumBytes = 4;
+inline constexpr std::size_t kMinFileBytes = kHeaderBytes + kChecksumBytes;
+
+enum Tag : std::uint8_t { kTagFace = 1, kTagCurves = 2, kTagLandmarks = 3, kTagName = 4 };
+inline constexpr std::uint8_t kFirstAncillaryTag = 0x80;
+
+//! Lossy steps are whole multiples of 2^-20 mm, so that every decoded value is an exact binary fraction.
+inline constexpr double kStepUnit = 1.0 / 1048576.0;
+//! The planes' grid is this many times finer than the samples' (28 numbers: almost free).
+inline constexpr std::uint32_t kPlaneRefinement = 8;
+//! The largest magnitude of a quantised coordinate (in steps): far beyond any face, and small enough
+//! that predictions and residuals stay well inside 64 (and zigzagged residuals inside 32) bits.
+inline constexpr std::int64_t kMaxQuantised = std::int64_t{1} << 26;
+
+//! The lossy grid, in multiples of `kStepUnit`.
+struct Grid {
+  std::uint32_t step = 1;
+  std::uint32_t plane_step = 1;
+  [[nodiscard]] double step_mm() const { return step * kStepUnit; }
+  [[nodiscard]] double plane_step_mm() const { return plane_step * kStepUnit; }
+};
+
+//! The samples on a grid: planes[j], y[j·K + k], z[j·K + k] in steps.
+struct Quantised {
+  std::size_t curves = 0;
+  std::size_t samples = 0;
+  std::vector<std::int64_t> planes;
+  std::vector<std::int64_t> y;
+  std::vector<std::int64_t> z;
+};
+
+//! The prediction of sample (j, k) of one coordinate from those decoded before it (curves 0..j−1 whole,
+//! samples 0..k−1 of curve j): docs/pdef-format.md, "Prediction".
+[[nodiscard]] std::int64_t predict(std::span<const std::int64_t> values, std::size_t samples, std::size_t j,
+                                   std::size_t k);
+
+//! Residuals ↔ values (zigzag symbols for Draco's coder), in the order samples are coded.
+[[nodiscard]] std::vector<std::uint32_t> to_symbols(std::span<const std::int64_t> values,
+                                                    std::size_t samples);
+//! False when a value leaves ±kMaxQuantised (a corrupt stream): `values` is then incomplete.
+[[nodiscard]] bool from_symbols(std::span<const std::uint32_t> symbols, std::size_t samples,
+                                std::span<std::int64_t> values);
+
+} // namespace pdeface::pdef::detail

@@ -1,0 +1,37 @@
+#pragma once
+// The coders `.pdef` uses, behind plain types (third-party types stay in entropy.cpp): Draco's rANS symbol
+// coding, zstd, and zlib's CRC-32.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace pdeface::pdef::detail {
+
+//! `draco::EncodeSymbols` of `symbols` (one component), Draco's default compression level.
+[[nodiscard]] std::string encode_symbols(std::span<const std::uint32_t> symbols);
+
+//! `draco::DecodeSymbols` of exactly `out.size()` symbols from `bytes`, which must be consumed whole.
+//! False when Draco refuses the data or leaves bytes over. The caller bounds `out.size()`.
+[[nodiscard]] bool decode_symbols(std::string_view bytes, std::span<std::uint32_t> out);
+
+//! A zstd frame of `bytes` at `level` (with the content size in its header).
+[[nodiscard]] std::string zstd_compress(std::string_view bytes, int level);
+
+//! The content of the zstd frame `frame`, which must be exactly `expected` bytes (checked in the frame's
+//! header before anything is allocated) and must fill `frame` whole. Nullopt otherwise.
+[[nodiscard]] std::optional<std::string> zstd_decompress(std::string_view frame, std::size_t expected);
+
+//! The bytes of `values` (each `width` bytes long) regrouped by byte position: all first bytes, then all
+//! second bytes, ... (float64 values of nearby numbers share their high bytes, which zstd then finds).
+[[nodiscard]] std::string shuffle(std::string_view values, std::size_t width);
+//! The inverse of `shuffle`.
+[[nodiscard]] std::string unshuffle(std::string_view planes, std::size_t width);
+
+//! CRC-32 (ISO-HDLC: zlib's `crc32`).
+[[nodiscard]] std::uint32_t crc32(std::string_view bytes);
+
+} // namespace pdeface::pdef::detail
