@@ -115,6 +115,9 @@ public:
   }
   std::int64_t svarint(std::string_view what, int max_bytes = 5) { return unzigzag(varint(what, max_bytes)); }
 
+  //! The bytes not read yet (not consumed).
+  [[nodiscard]] std::string_view rest() const { return error_ ? std::string_view{} : bytes_.substr(pos_); }
+
   std::string_view take(std::size_t n, std::string_view what) {
     if (!need(n, what)) return {};
     const std::string_view out = bytes_.substr(pos_, n);

@@ -4,6 +4,7 @@
 
 #include "pdeface/pdef/pdef.hpp"
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -46,16 +47,30 @@ struct Quantised {
   std::vector<std::int64_t> z;
 };
 
-//! The prediction of sample (j, k) of one coordinate from those decoded before it (curves 0..j−1 whole,
-//! samples 0..k−1 of curve j): docs/pdef-format.md, "Prediction".
-[[nodiscard]] std::int64_t predict(std::span<const std::int64_t> values, std::size_t samples, std::size_t j,
-                                   std::size_t k);
+//! The prediction's weights (fixed point, kWeightBits fractional bits), one set per coordinate.
+inline constexpr std::size_t kFeatures = 7;
+inline constexpr int kWeightBits = 12;
+inline constexpr std::int32_t kMaxWeight = (1 << 15) - 1;
+using Weights = std::array<std::int32_t, kFeatures>;
+//! The weights a file uses unless it stores its own: least squares on ten of the shared scans at 10 %
+//! (docs/pdef-format.md, "Prediction"), good from 5 to 15 %.
+inline constexpr std::array<Weights, 2> kDefaultWeights{
+    {{3621, 82, 3395, -3123, 141, 292, -324}, {3635, -744, 225, -101, 897, 310, -659}}};
 
-//! Residuals ↔ values (zigzag symbols for Draco's coder), in the order samples are coded.
+//! The prediction of sample (j, k) of one coordinate from those decoded before it (curves 0..j−1 whole,
+//! samples 0..k−1 of curve j) and the planes: docs/pdef-format.md, "Prediction".
+[[nodiscard]] std::int64_t predict(std::span<const std::int64_t> values, std::span<const std::int64_t> planes,
+                                   std::size_t samples, const Weights& w, std::size_t j, std::size_t k);
+//! The weights that predict `values` best (least squares over the curves from the third on), rounded.
+[[nodiscard]] Weights fit_weights(std::span<const std::int64_t> values, std::span<const std::int64_t> planes,
+                                  std::size_t samples);
+
+//! Residuals ↔ values (zigzag symbols), in the order samples are coded.
 [[nodiscard]] std::vector<std::uint32_t> to_symbols(std::span<const std::int64_t> values,
-                                                    std::size_t samples);
+                                                    std::span<const std::int64_t> planes, std::size_t samples,
+                                                    const Weights& w);
 //! False when a value leaves ±kMaxQuantised (a corrupt stream): `values` is then incomplete.
-[[nodiscard]] bool from_symbols(std::span<const std::uint32_t> symbols, std::size_t samples,
-                                std::span<std::int64_t> values);
+[[nodiscard]] bool from_symbols(std::span<const std::uint32_t> symbols, std::span<const std::int64_t> planes,
+                                std::size_t samples, const Weights& w, std::span<std::int64_t> values);
 
 } // namespace pdeface::pdef::detail

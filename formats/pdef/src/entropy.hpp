@@ -18,6 +18,15 @@ namespace pdeface::pdef::detail {
 //! False when Draco refuses the data or leaves bytes over. The caller bounds `out.size()`.
 [[nodiscard]] bool decode_symbols(std::string_view bytes, std::span<std::uint32_t> out);
 
+//! Symbols coded by magnitude class (docs/pdef-format.md, "Coded integers"): values 0-3 are classes 0-3;
+//! from 4 up, two classes per power of two, each followed by its value's lower bits. The classes are
+//! coded by rANS (Draco's `RAnsEncoder`, 12-bit precision) with a table of their frequencies in half
+//! octaves stored in front; the lower bits follow, packed.
+[[nodiscard]] std::string encode_classes(std::span<const std::uint32_t> symbols);
+//! Decodes exactly `out.size()` symbols from the start of `bytes`; the bytes used, or nullopt when the data
+//! is not a valid stream of that many symbols.
+[[nodiscard]] std::optional<std::size_t> decode_classes(std::string_view bytes, std::span<std::uint32_t> out);
+
 //! A zstd frame of `bytes` at `level` (with the content size in its header).
 [[nodiscard]] std::string zstd_compress(std::string_view bytes, int level);
 

@@ -3,6 +3,8 @@
 
 #include "lossy.hpp"
 
+#include "frame.hpp"
+
 #include <fmt/format.h>
 
 #include <Eigen/Dense>
@@ -41,10 +43,7 @@ double sample_error(const Face& face, const Face& decoded) {
 // How far (mm) mapping the face back with the frame stored as float32 moves it: the largest over the
 // corners of the curves' bounding box (the difference of two affine maps is largest at a corner).
 double float32_frame_error(const Face& face) {
-  Frame rounded32 = face.frame;
-  rounded32.rotation = face.frame.rotation.cast<float>().cast<double>();
-  rounded32.translation = face.frame.translation.cast<float>().cast<double>();
-  rounded32.scale = static_cast<double>(static_cast<float>(face.frame.scale));
+  const Frame rounded32 = as_float32(face.frame);
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::max()), hi = -lo;
   for (const pde::Curve& c : face.curves.samples) {
     lo = lo.cwiseMin(c.colwise().minCoeff().transpose());
@@ -60,8 +59,8 @@ double float32_frame_error(const Face& face) {
 }
 
 bool frame_is_float32(const Frame& f) {
-  const auto exact = [](double v) { return static_cast<double>(static_cast<float>(v)) == v; };
-  return f.rotation.unaryExpr(exact).all() && f.translation.unaryExpr(exact).all() && exact(f.scale);
+  const Frame back = as_float32(f);
+  return back.rotation == f.rotation && back.translation == f.translation && back.scale == f.scale;
 }
 
 // A point of `surface` and its two tangents.
@@ -210,7 +209,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
   std::uint32_t units = first_units;
   for (std::size_t attempt = 0; units >= 1 && attempt < 200; ++attempt) {
     const Grid grid = grid_of(units);
-    units = std::min(units - 1, static_cast<std::uint32_t>(units * 0.95));
+    units = std::min(units - 1, static_cast<std::uint32_t>(units * 0.98));
     std::optional<Quantised> q = quantise(face, grid);
     if (!q) continue;
     Face decoded = face;

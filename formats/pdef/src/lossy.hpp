@@ -24,7 +24,7 @@ struct LossyPlan {
 //! The face's planes and curves from their values on `grid` (every sample of curve j at x = its plane).
 void dequantise(const Quantised& q, const Grid& grid, Face& face);
 
-//! The coarsest grid (steps 0.95^i of the first that keeps every sample within the maximum error) on which
+//! The coarsest grid (steps 0.98^i of the first that keeps every sample within the maximum error) on which
 //! the decoded samples and the decoded surface stay within `options.max_error_mm` of the face's
 //! (`surface_error`); a face decoded from a lossy file keeps its own grid when that is fine enough.
 //! Errors: `InvalidArgument` when the surface cannot be built or no grid fits.

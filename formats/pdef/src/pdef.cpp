@@ -5,6 +5,7 @@
 #include "bytes.hpp"
 #include "codec.hpp"
 #include "entropy.hpp"
+#include "frame.hpp"
 #include "lossy.hpp"
 
 #include <fmt/format.h>
@@ -111,21 +112,10 @@ std::optional<Error> check_face(const Face& face, const EncodeOptions& options) 
 // ---------------------------------------------------------------------------------------------------------
 // Writing.
 
-void write_frame(Writer& w, const Frame& f, bool float64) {
-  w.u8(float64 ? 8 : 4);
-  auto put = [&](double v) { float64 ? w.f64(v) : w.f32(static_cast<float>(v)); };
-  for (int r = 0; r < 3; ++r)
-    for (int c = 0; c < 3; ++c)
-      put(f.rotation(r, c));
-  for (int i = 0; i < 3; ++i)
-    put(f.translation(i));
-  put(f.scale);
-}
-
 std::string face_section(const Face& face, bool lossless, const Grid& grid, bool frame64) {
   Writer w;
   w.u8(unit_code(face.frame.scan_units));
-  write_frame(w, face.frame, frame64);
+  detail::write_frame(w, face.frame, frame64);
   const pde::Options& p = face.pde;
   w.u8(static_cast<std::uint8_t>(scheme_code(p.scheme) |
                                  (p.spacing == pde::Spacing::Physical ? kPhysicalSpacing : 0) |
@@ -172,13 +162,23 @@ std::string curves_section(const Face& face, const Quantised* q) {
     w.bytes(detail::zstd_compress(detail::shuffle(values.str(), 8), 19));
     return std::move(w.str());
   }
-  w.svarint(q->planes[0]);
-  for (std::size_t j = 1; j < curves; ++j)
-    w.svarint(q->planes[j] - q->planes[j - 1]);
-  for (const std::vector<std::int64_t>* values : {&q->y, &q->z}) {
-    const std::string coded = detail::encode_symbols(detail::to_symbols(*values, samples));
-    w.varint(coded.size());
-    w.bytes(coded);
+  for (std::size_t j = 0; j < curves; ++j) // the planes: x_0, then first and second differences
+    w.svarint(j == 0   ? q->planes[0]
+              : j == 1 ? q->planes[1] - q->planes[0]
+                       : q->planes[j] - 2 * q->planes[j - 1] + q->planes[j - 2]);
+  for (const std::size_t c : {0, 1}) {
+    // The default weights, or the file's own (least squares) when they make it smaller.
+    const std::vector<std::int64_t>& values = c == 0 ? q->y : q->z;
+    const detail::Weights own = detail::fit_weights(values, q->planes, samples);
+    Writer with_default, with_own;
+    with_default.u8(0);
+    with_default.bytes(
+        detail::encode_classes(detail::to_symbols(values, q->planes, samples, detail::kDefaultWeights[c])));
+    with_own.u8(1);
+    for (const std::int32_t weight : own)
+      with_own.svarint(weight);
+    with_own.bytes(detail::encode_classes(detail::to_symbols(values, q->planes, samples, own)));
+    w.bytes(with_own.size() < with_default.size() ? with_own.str() : with_default.str());
   }
   return std::move(w.str());
 }
@@ -332,37 +332,6 @@ Result<Container> read_container(std::string_view bytes, std::string_view source
   return out;
 }
 
-Frame read_frame(Reader& r, bool& float64) {
-  Frame f;
-  const std::size_t at = r.offset();
-  const std::uint8_t width = r.u8("the frame's precision");
-  float64 = width == 8;
-  if (r.ok() && width != 4 && width != 8) {
-    r.fail(ErrorCode::Malformed, fmt::format("the frame's precision is {} bytes (4 or 8)", width), at);
-    return f;
-  }
-  auto get = [&](std::string_view what) {
-    return width == 8 ? r.f64(what) : static_cast<double>(r.f32(what));
-  };
-  const std::size_t values = r.offset();
-  for (int row = 0; row < 3; ++row)
-    for (int c = 0; c < 3; ++c)
-      f.rotation(row, c) = get("the frame's rotation");
-  for (int i = 0; i < 3; ++i)
-    f.translation(i) = get("the frame's translation");
-  const std::size_t scale_at = r.offset();
-  f.scale = get("the frame's scale");
-  if (!r.ok()) return f;
-  if (!f.rotation.allFinite() || !f.translation.allFinite() || !std::isfinite(f.scale))
-    r.fail(ErrorCode::NonFinite, "the frame has a NaN or infinite value", values);
-  else if (!(f.scale > 0))
-    r.fail(ErrorCode::Malformed, fmt::format("the frame's scale {} is not positive", f.scale), scale_at);
-  else if ((f.rotation.transpose() * f.rotation - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff() > 1e-5 ||
-           f.rotation.determinant() < 0)
-    r.fail(ErrorCode::Malformed, "the frame's rotation is not a rotation", values);
-  return f;
-}
-
 struct Meta {
   std::size_t curves = 0;
   std::size_t samples = 0;
@@ -377,7 +346,7 @@ Meta read_face_section(Reader& r, Face& face, bool lossless, std::size_t file_by
   if (r.ok() && units >= kUnitCodes.size())
     r.fail(ErrorCode::Malformed, fmt::format("unknown units code {}", units), at);
   if (r.ok()) face.frame.scan_units = kUnitCodes[units];
-  const Frame frame = read_frame(r, m.frame64);
+  const Frame frame = detail::read_frame(r, m.frame64);
   if (!r.ok()) return m;
   face.frame.rotation = frame.rotation;
   face.frame.translation = frame.translation;
@@ -516,23 +485,44 @@ void read_lossy_curves(Reader& r, Face& face, const Meta& m) {
     const std::size_t at = r.offset();
     const std::int64_t v = r.svarint("the planes", 10);
     if (!r.ok()) return;
-    q.planes[j] = j == 0 ? v : q.planes[j - 1] + v;
-    if (j > 0 && v <= 0) r.fail(ErrorCode::Malformed, fmt::format("plane {} does not ascend", j), at);
-    if (q.planes[j] > detail::kMaxQuantised || q.planes[j] < -detail::kMaxQuantised)
+    if (v > 4 * detail::kMaxQuantised || v < -4 * detail::kMaxQuantised) {
       r.fail(ErrorCode::Malformed, fmt::format("plane {} is beyond the grid's range", j), at);
-  }
-  std::vector<std::uint32_t> symbols(m.curves * m.samples);
-  for (std::vector<std::int64_t>* values : {&q.y, &q.z}) {
-    const std::size_t at = r.offset();
-    const std::uint64_t size = r.varint("a coded stream's length");
-    const std::string_view coded = r.take(static_cast<std::size_t>(size), "a coded stream");
-    if (!r.ok()) return;
-    values->resize(symbols.size());
-    if (!detail::decode_symbols(coded, symbols) || !detail::from_symbols(symbols, m.samples, *values)) {
-      r.fail(ErrorCode::Malformed, fmt::format("the {} stream does not decode", values == &q.y ? "y" : "z"),
-             at);
       return;
     }
+    q.planes[j] = j == 0 ? v : j == 1 ? q.planes[0] + v : v + 2 * q.planes[j - 1] - q.planes[j - 2];
+    if (q.planes[j] > detail::kMaxQuantised || q.planes[j] < -detail::kMaxQuantised)
+      r.fail(ErrorCode::Malformed, fmt::format("plane {} is beyond the grid's range", j), at);
+    else if (j > 0 && q.planes[j] <= q.planes[j - 1])
+      r.fail(ErrorCode::Malformed, fmt::format("plane {} does not ascend", j), at);
+  }
+  std::vector<std::uint32_t> symbols(m.curves * m.samples);
+  for (const std::size_t c : {0, 1}) {
+    std::vector<std::int64_t>* values = c == 0 ? &q.y : &q.z;
+    const char* name = c == 0 ? "y" : "z";
+    const std::size_t kind_at = r.offset();
+    const std::uint8_t kind = r.u8("the prediction's weights");
+    if (r.ok() && kind > 1)
+      r.fail(ErrorCode::Malformed, fmt::format("unknown prediction weights {} (0: default, 1: stored)", kind),
+             kind_at);
+    detail::Weights weights = detail::kDefaultWeights[c];
+    for (std::int32_t& weight : weights) {
+      if (kind != 1) break;
+      const std::size_t at = r.offset();
+      const std::int64_t v = r.svarint("a prediction weight");
+      if (r.ok() && (v > detail::kMaxWeight || v < -detail::kMaxWeight))
+        r.fail(ErrorCode::Malformed,
+               fmt::format("a prediction weight of {} (at most {})", v, detail::kMaxWeight), at);
+      weight = static_cast<std::int32_t>(v);
+    }
+    if (!r.ok()) return;
+    const std::size_t at = r.offset();
+    const std::optional<std::size_t> used = detail::decode_classes(r.rest(), symbols);
+    values->resize(symbols.size());
+    if (!used || !detail::from_symbols(symbols, q.planes, m.samples, weights, *values)) {
+      r.fail(ErrorCode::Malformed, fmt::format("the {} samples do not decode", name), at);
+      return;
+    }
+    r.take(*used, "the samples");
   }
   if (!r.at_end()) {
     r.fail_here(ErrorCode::Malformed, "bytes left over at the end of the curves section");
