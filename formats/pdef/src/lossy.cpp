@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <numeric>
 
@@ -21,6 +22,17 @@ namespace {
 // The steps stay below 2^26 units (64 mm), so that a value (≤ 2^26 steps) times its step is an exact
 // integer below 2^52 before it is scaled by 2^-20: decoding involves no rounding at all.
 constexpr std::uint32_t kMaxStepUnits = std::uint32_t{1} << 26;
+
+// The check grid: points per interval between curves and between samples; when the largest distance on it
+// is at least this share of the limit, the cells around the points that could reach it are searched again
+// finer.
+constexpr int kCoarse = 8;
+constexpr double kRefineShare = 0.85;
+// The most a tangent-plane estimate is taken to be off (mm): beyond it, points are not refined.
+constexpr double kMaxMargin = 0.01;
+// The surface is accepted within this share of the maximum error: the grid's spacing (0.1-0.2 mm) may
+// miss the top of a peak of the distance (about 1 mm wide) by up to ~1 %.
+constexpr double kCheckShare = 0.97;
 
 double value(std::int64_t q, std::uint32_t units) { return static_cast<double>(q * units) * kStepUnit; }
 
@@ -132,36 +144,149 @@ void dequantise(const Quantised& q, const Grid& grid, Face& face) {
   }
 }
 
+namespace {
+
+// Points of one surface (`from`) with what the other (`to`) has at the same (u, v): its point and tangents.
+struct Pairs {
+  std::vector<double> u, v;
+  std::vector<Vec3> from, to, to_u, to_v;
+  std::vector<bool> border; // on or next to the grid's border
+};
+
+// The points of `from` on the grid us × vs, with the point and tangents of `to` at the same (u, v),
+// appended to `out`. `border`: whether a point is on or next to the border of the surfaces' domain.
+void evaluate_pairs(const pde::Surface& from, const pde::Surface& to, std::span<const double> us,
+                    std::span<const double> vs, const std::function<bool(std::size_t, std::size_t)>& border,
+                    Pairs& out) {
+  const pde::Grid p = from.evaluate(us, vs), q = to.evaluate(us, vs);
+  const pde::Grid qu = to.evaluate(us, vs, pde::Derivative::U), qv = to.evaluate(us, vs, pde::Derivative::V);
+  if (out.u.empty()) { // the coarse grid: one allocation each
+    for (auto* v : {&out.u, &out.v})
+      v->reserve(p.points.size());
+    for (auto* v : {&out.from, &out.to, &out.to_u, &out.to_v})
+      v->reserve(p.points.size());
+    out.border.reserve(p.points.size());
+  }
+  for (std::size_t k = 0; k < vs.size(); ++k)
+    for (std::size_t i = 0; i < us.size(); ++i) {
+      const std::size_t at = k * us.size() + i;
+      out.u.push_back(us[i]);
+      out.v.push_back(vs[k]);
+      out.from.push_back(p.points[at]);
+      out.to.push_back(q.points[at]);
+      out.to_u.push_back(qu.points[at]);
+      out.to_v.push_back(qv.points[at]);
+      out.border.push_back(border(i, k));
+    }
+}
+
+// Each point's distance to the other surface estimated by its distance to that surface's tangent plane at
+// the same (u, v), which is off by about |tangential part|² × curvature / 2 (micrometres; taken as at most
+// |tangential part|² / 2, curvature below 1/mm): the estimate and how far off it may be. On the border the
+// nearest point may lie on the surface's edge, off its tangent plane: there the estimate is the distance at
+// the same (u, v), an upper bound.
+void estimate(const Pairs& p, std::vector<double>& estimate, std::vector<double>& margin) {
+  estimate.resize(p.from.size());
+  margin.resize(p.from.size());
+  for (std::size_t i = 0; i < p.from.size(); ++i) {
+    const Vec3 d = p.from[i] - p.to[i];
+    const Vec3 n = p.to_u[i].cross(p.to_v[i]);
+    const double length = n.norm();
+    estimate[i] = length > 0 && !p.border[i] ? std::abs(d.dot(n)) / length : d.norm();
+    margin[i] = std::min(kMaxMargin, 0.5 * (d.squaredNorm() - estimate[i] * estimate[i]) + 1e-4);
+  }
+}
+
+// The largest distance of the points to the other surface: those whose estimate could reach the largest
+// found are projected onto it (`distance_to`). Stops early above `limit`.
+double largest(const Pairs& p, const pde::Surface& to, double limit) {
+  if (p.from.empty()) return 0;
+  std::vector<double> e, m;
+  estimate(p, e, m);
+  const double step_u = to.u_max() / static_cast<double>(to.knots().size() - 1);
+  const double step_v = std::numbers::pi / static_cast<double>(to.sample_count() - 1);
+  const auto distance = [&](std::size_t i) {
+    return distance_to(to, p.from[i], p.u[i], p.v[i], step_u, step_v);
+  };
+  // The point estimated farthest first: only points that could beat it are sorted and projected.
+  const auto top = static_cast<std::size_t>(std::ranges::max_element(e) - e.begin());
+  double worst = distance(top);
+  if (worst > limit) return worst;
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < e.size(); ++i)
+    if (i != top && e[i] + m[i] > worst) order.push_back(i);
+  std::ranges::sort(order, [&](std::size_t l, std::size_t r) { return e[l] > e[r]; });
+  for (const std::size_t i : order) {
+    if (e[i] + m[i] <= worst) continue;
+    if (e[i] + kMaxMargin <= worst) break;
+    worst = std::max(worst, distance(i));
+    if (worst > limit) break;
+  }
+  return worst;
+}
+
+} // namespace
+
 double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit) {
+  // A coarse grid first: 8 points per curve interval across and per sample interval along.
   const std::vector<double>& knots = reference.knots();
   std::vector<double> us, vs;
   for (std::size_t j = 0; j + 1 < knots.size(); ++j)
-    for (int i = 0; i < 4; ++i)
-      us.push_back(knots[j] + (knots[j + 1] - knots[j]) * i / 4.0);
+    for (int i = 0; i < kCoarse; ++i)
+      us.push_back(knots[j] + (knots[j + 1] - knots[j]) * i / kCoarse);
   us.push_back(reference.u_max());
   const std::size_t intervals = reference.sample_count() - 1;
   for (std::size_t k = 0; k < intervals; ++k)
-    for (int i = 0; i < 8; ++i)
-      vs.push_back(std::numbers::pi * (static_cast<double>(k) + i / 8.0) / static_cast<double>(intervals));
+    for (int i = 0; i < kCoarse; ++i)
+      vs.push_back(std::numbers::pi * (static_cast<double>(k) + static_cast<double>(i) / kCoarse) /
+                   static_cast<double>(intervals));
   vs.push_back(std::numbers::pi);
-  const pde::Grid a = reference.evaluate(us, vs), b = decoded.evaluate(us, vs);
+  const auto grid_border = [&](std::size_t i, std::size_t k) {
+    return i < 2 || i + 2 >= us.size() || k < 2 || k + 2 >= vs.size();
+  };
+  const auto domain_border = [&](double u, double v) {
+    return u <= us[1] || u >= us[us.size() - 2] || v <= vs[1] || v >= vs[vs.size() - 2];
+  };
 
-  // Points in decreasing order of their distance at the same (u, v): the distance to the surface is at
-  // most that, so once it falls below the largest found the rest cannot change the answer.
-  std::vector<double> same(a.points.size());
-  for (std::size_t i = 0; i < same.size(); ++i)
-    same[i] = (a.points[i] - b.points[i]).norm();
-  std::vector<std::size_t> order(same.size());
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::ranges::sort(order, [&](std::size_t l, std::size_t r) { return same[l] > same[r]; });
-  const double step_u = reference.u_max() / static_cast<double>(knots.size() - 1);
-  const double step_v = std::numbers::pi / static_cast<double>(intervals);
   double worst = 0;
-  for (const std::size_t i : order) {
-    if (same[i] <= worst) break;
-    const std::size_t iu = i % a.u_count, iv = i / a.u_count;
-    worst = std::max(worst, distance_to(reference, b.points[i], us[iu], vs[iv], step_u, step_v));
-    if (worst > limit) break;
+  for (const bool back : {false, true}) { // decoded to reference, then reference to decoded
+    const pde::Surface& from = back ? reference : decoded;
+    const pde::Surface& to = back ? decoded : reference;
+    Pairs coarse;
+    evaluate_pairs(from, to, us, vs, grid_border, coarse);
+    const double found = largest(coarse, to, limit);
+    worst = std::max(worst, found);
+    if (found > limit) return found;
+    if (found < kRefineShare * limit) continue;
+    // The distance between two such surfaces has peaks about 1 mm wide across the curves where they bend
+    // sharply, which the coarse grid (0.2-0.5 mm apart) may miss by a few per cent: near the limit, the
+    // cells around the highest coarse points are searched again 4 times finer.
+    std::vector<double> e, m;
+    estimate(coarse, e, m);
+    Pairs fine;
+    for (std::size_t at = 0; at < e.size(); ++at) {
+      if (e[at] + m[at] < kRefineShare * limit) continue;
+      const std::size_t i = at % us.size(), k = at / us.size();
+      std::array<double, 6> su{}, sv{};
+      std::size_t nu = 0, nv = 0;
+      for (int t = -3; t <= 3; ++t) { // the two cells either side, each way
+        if (t == 0) continue;
+        if (!(t < 0 && i == 0) && !(t > 0 && i + 1 >= us.size())) {
+          const double a = us[t < 0 ? i - 1 : i], b = us[t < 0 ? i : i + 1];
+          su[nu++] = a + (b - a) * (t < 0 ? t + 4 : t) / 4.0;
+        }
+        if (!(t < 0 && k == 0) && !(t > 0 && k + 1 >= vs.size())) {
+          const double a = vs[t < 0 ? k - 1 : k], b = vs[t < 0 ? k : k + 1];
+          sv[nv++] = a + (b - a) * (t < 0 ? t + 4 : t) / 4.0;
+        }
+      }
+      evaluate_pairs(
+          from, to, std::span(su.data(), nu), std::span(sv.data(), nv),
+          [&](std::size_t ii, std::size_t kk) { return domain_border(su[ii], sv[kk]); }, fine);
+    }
+    const double refined = largest(fine, to, limit);
+    worst = std::max(worst, refined);
+    if (refined > limit) return refined;
   }
   return worst;
 }
@@ -206,33 +331,62 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     return make_error(ErrorCode::InvalidArgument,
                       "pdef: the face's surface cannot be built: " + reference.error().message);
   const double frame_part = plan.frame64 ? 0.0 : frame_error;
-  std::uint32_t units = first_units;
-  for (std::size_t attempt = 0; units >= 1 && attempt < 200; ++attempt) {
+  // The first grid that keeps every sample within e is tried first; each that fails is followed by one
+  // finer in proportion to how far it failed (the error grows about linearly with the step), at least 2 %
+  // finer; once one passes, the step between it and the finest that failed is bisected twice (the error is
+  // not monotonic in the step: a file a few per cent smaller is often found).
+  struct Checked {
+    bool passed = false;
+    double ratio = 0.5; // limit / error when it failed
+    double samples = 0, surface = 0;
+    std::optional<Quantised> q;
+  };
+  const double limit = kCheckShare * e - frame_part;
+  const auto check = [&](std::uint32_t units) {
+    Checked c;
     const Grid grid = grid_of(units);
-    units = std::min(units - 1, static_cast<std::uint32_t>(units * 0.98));
-    std::optional<Quantised> q = quantise(face, grid);
-    if (!q) continue;
+    c.q = quantise(face, grid);
+    if (!c.q) return c;
     Face decoded = face;
-    dequantise(*q, grid, decoded);
-    const double samples = sample_error(face, decoded);
-    if (samples + frame_part > e) {
-      ++plan.tightenings;
-      continue;
+    dequantise(*c.q, grid, decoded);
+    c.samples = sample_error(face, decoded);
+    if (c.samples + frame_part > e) {
+      c.ratio = (e - frame_part) / c.samples;
+      return c;
     }
     Result<pde::Surface> surface = pde::Surface::build(decoded.curves, decoded.pde);
-    if (!surface) {
+    if (!surface) return c;
+    c.surface = surface_error(*reference, *surface, limit);
+    c.passed = c.surface <= limit;
+    if (!c.passed) c.ratio = limit / c.surface; // c.surface is where the search stopped: at most the error
+    return c;
+  };
+  std::uint32_t units = first_units, failed = 0, best = 0;
+  Checked passed;
+  int bisections = 0;
+  for (std::size_t attempt = 0; units >= 1 && attempt < 200; ++attempt) {
+    Checked c = check(units);
+    if (c.passed) {
+      best = units;
+      passed = std::move(c);
+    } else {
       ++plan.tightenings;
+      failed = units;
+    }
+    if (best == 0) {
+      units = std::min(units - 1, static_cast<std::uint32_t>(units * std::min(0.98, 0.995 * c.ratio)));
       continue;
     }
-    const double surface_part = surface_error(*reference, *surface, e - frame_part);
-    if (surface_part + frame_part > e) {
-      ++plan.tightenings;
-      continue;
-    }
-    plan.grid = grid;
-    plan.quantised = std::move(*q);
-    plan.max_sample_error = samples + frame_part;
-    plan.max_surface_error = surface_part + frame_part;
+    if (failed == 0 || bisections == 2 || failed - best <= std::max<std::uint32_t>(1, best / 100)) break;
+    ++bisections;
+    units = static_cast<std::uint32_t>(std::sqrt(static_cast<double>(failed) * best));
+    if (units == best || units == failed) break;
+  }
+  if (best != 0) {
+    plan.grid = grid_of(best);
+    plan.quantised = *std::move(passed.q);
+    plan.max_sample_error = passed.samples + frame_part;
+    plan.max_surface_error = passed.surface + frame_part;
     return plan;
   }
   return make_error(ErrorCode::InvalidArgument,

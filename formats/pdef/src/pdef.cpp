@@ -243,21 +243,24 @@ Result<Container> read_container(std::string_view bytes, std::string_view source
   if (bytes.substr(0, magic) != kMagic.substr(0, magic))
     return make_error(ErrorCode::BadMagic, "not a .pdef file (it does not start with \"PDEF\")", src,
                       Location::at_byte(0));
-  Reader header(bytes.substr(0, std::min(bytes.size(), detail::kHeaderBytes)), 0, source);
-  header.take(kMagic.size(), "the magic");
-  const std::uint8_t version = header.u8("the version");
-  if (header.ok() && version != detail::kVersion)
+  if (bytes.size() > 4 && static_cast<std::uint8_t>(bytes[4]) != detail::kVersion)
     return make_error(ErrorCode::UnsupportedVersion,
-                      fmt::format("version {} (this reader knows version {})", version, detail::kVersion),
+                      fmt::format("version {} (this reader knows version {})",
+                                  static_cast<std::uint8_t>(bytes[4]), detail::kVersion),
                       src, Location::at_byte(4));
-  const std::uint8_t flags = header.u8("the flags");
-  if (header.ok() && (flags & ~detail::kKnownFlags) != 0)
+  const std::uint8_t flags = bytes.size() > 5 ? static_cast<std::uint8_t>(bytes[5]) : 0;
+  if ((flags & ~detail::kKnownFlags) != 0)
     return make_error(ErrorCode::UnsupportedFormat,
                       fmt::format("unknown required flags 0x{:02x} (a newer writer's feature)",
                                   flags & ~detail::kKnownFlags),
                       src, Location::at_byte(5));
+  if (bytes.size() < detail::kHeaderBytes)
+    return make_error(ErrorCode::Truncated,
+                      fmt::format("the file ends after {} bytes, inside its {}-byte header", bytes.size(),
+                                  detail::kHeaderBytes),
+                      src, Location::at_byte(bytes.size()));
+  Reader header(bytes.substr(6, 4), 6, source);
   const std::uint32_t length = header.u32("the file's length");
-  if (!header.ok()) return header.error();
   if (length < detail::kMinFileBytes)
     return make_error(
         ErrorCode::Malformed,
@@ -588,6 +591,13 @@ Result<Encoded> encode(const Face& face, const EncodeOptions& options) {
   if (!plan) return std::move(plan).error();
   Encoded out;
   out.bytes = write_file(face, &plan->quantised, plan->grid, plan->frame64);
+  // The file must decode to exactly the samples the plan checked (a cheap guard against a writer bug).
+  Face expected;
+  detail::dequantise(plan->quantised, plan->grid, expected);
+  const Result<Face> back = decode(out.bytes);
+  if (!back || back->planes != expected.planes || back->curves.samples != expected.curves.samples)
+    throw std::logic_error("pdef::encode: the file does not decode to what was encoded" +
+                           (back ? std::string() : ": " + back.error().to_string()));
   out.step_mm = plan->grid.step_mm();
   out.max_sample_error = plan->max_sample_error;
   out.max_surface_error = plan->max_surface_error;
