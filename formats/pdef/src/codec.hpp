@@ -30,6 +30,10 @@ inline constexpr std::uint32_t kPlaneRefinement = 8;
 //! that predictions and residuals stay well inside 64 (and zigzagged residuals inside 32) bits.
 inline constexpr std::int64_t kMaxQuantised = std::int64_t{1} << 26;
 
+//! Steps stay below 2^26 units (64 mm), so that a value (at most 2^26 steps) times its step is an exact
+//! integer below 2^52 before it is scaled by 2^-20: decoding involves no rounding at all.
+inline constexpr std::uint32_t kMaxStepUnits = std::uint32_t{1} << 26;
+
 //! The lossy grid, in multiples of `kStepUnit`.
 struct Grid {
   std::uint32_t step = 1;

@@ -19,10 +19,6 @@
 namespace pdeface::pdef::detail {
 namespace {
 
-// The steps stay below 2^26 units (64 mm), so that a value (≤ 2^26 steps) times its step is an exact
-// integer below 2^52 before it is scaled by 2^-20: decoding involves no rounding at all.
-constexpr std::uint32_t kMaxStepUnits = std::uint32_t{1} << 26;
-
 // The check grid: points per interval between curves and between samples; when the largest distance on it
 // is at least this share of the limit, the cells around the points that could reach it are searched again
 // finer.

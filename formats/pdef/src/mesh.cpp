@@ -8,8 +8,13 @@
 namespace pdeface::pdef {
 namespace {
 
+// Points spread over `length` about `spacing` apart: at least 2; lengths that are not positive and finite
+// (a hostile file's curves may run downwards or not at all) get 2, absurd ones more than any grid may have.
 std::size_t points_over(double length, double spacing) {
-  return std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(length / spacing)) + 1);
+  const double intervals = std::ceil(length / spacing);
+  if (!(intervals >= 1)) return 2;
+  if (!(intervals < static_cast<double>(kMaxGridVertices))) return kMaxGridVertices + 1;
+  return std::max<std::size_t>(2, static_cast<std::size_t>(intervals) + 1);
 }
 
 } // namespace
@@ -25,7 +30,7 @@ Resolution grid_for(double width_mm, double height_mm, std::size_t v) {
 }
 
 Resolution grid_for(double width_mm, double height_mm, std::optional<Resolution> asked) {
-  Resolution grid = asked.value_or(grid_for(width_mm, height_mm, kDefaultGridSpacing));
+  Resolution grid = asked ? *asked : grid_for(width_mm, height_mm, kDefaultGridSpacing);
   if (grid.u == 0) grid = grid_for(width_mm, height_mm, grid.v);
   return {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
 }
@@ -44,7 +49,7 @@ std::array<double, 2> face_size(const Face& face) {
 Result<SurfaceMesh> surface_mesh(const pde::Surface& surface, Resolution grid, const Frame& frame,
                                  std::string_view source) {
   grid = {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
-  if (grid.u > kMaxGridVertices / grid.v)
+  if (grid.u > kMaxGridVertices / grid.v || grid.v > kMaxGridVertices / 2)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("a {} x {} grid has more than {} vertices: ask for a coarser resolution",
                                   grid.u, grid.v, kMaxGridVertices),

@@ -236,7 +236,7 @@ struct Container {
   std::size_t length = 0;
 };
 
-Result<Container> read_container(std::string_view bytes, std::string_view source, bool verify_checksum) {
+Result<Container> read_container(std::string_view bytes, std::string_view source) {
   const std::string src(source);
   if (bytes.empty()) return make_error(ErrorCode::Empty, "the file is empty", src, Location::at_byte(0));
   const std::size_t magic = std::min(bytes.size(), kMagic.size());
@@ -284,7 +284,7 @@ Result<Container> read_container(std::string_view bytes, std::string_view source
   const std::size_t body_end = length - detail::kChecksumBytes;
   Reader tail(bytes.substr(body_end), body_end, source);
   const std::uint32_t stored = tail.u32("the checksum");
-  if (verify_checksum && stored != detail::crc32(bytes.substr(0, body_end)))
+  if (stored != detail::crc32(bytes.substr(0, body_end)))
     return make_error(
         ErrorCode::ChecksumMismatch,
         fmt::format("the checksum 0x{:08x} does not match the data (0x{:08x}): the file was damaged", stored,
@@ -398,8 +398,12 @@ Meta read_face_section(Reader& r, Face& face, bool lossless, std::size_t file_by
     at = r.offset();
     m.grid.step = static_cast<std::uint32_t>(r.varint("the step"));
     m.grid.plane_step = static_cast<std::uint32_t>(r.varint("the planes' step"));
-    if (r.ok() && (m.grid.step == 0 || m.grid.plane_step == 0))
-      r.fail(ErrorCode::Malformed, "a step of 0", at);
+    if (r.ok() && (m.grid.step == 0 || m.grid.plane_step == 0 || m.grid.step >= detail::kMaxStepUnits ||
+                   m.grid.plane_step >= detail::kMaxStepUnits))
+      r.fail(ErrorCode::Malformed,
+             fmt::format("steps of {} and {} units (1 to {})", m.grid.step, m.grid.plane_step,
+                         detail::kMaxStepUnits - 1),
+             at);
   }
   if (r.ok() && !r.at_end())
     r.fail_here(ErrorCode::Malformed, "bytes left over at the end of the face section");
@@ -611,8 +615,8 @@ Result<Encoded> encode(const Face& face, const EncodeOptions& options) {
   return out;
 }
 
-Result<Face> decode(std::string_view bytes, std::string_view source, const DecodeOptions& options) {
-  Result<Container> container = read_container(bytes, source, options.verify_checksum);
+Result<Face> decode(std::string_view bytes, std::string_view source) {
+  Result<Container> container = read_container(bytes, source);
   if (!container) return std::move(container).error();
   Face face;
   face.curves.units = Units::Millimetres;
@@ -649,7 +653,7 @@ Result<Face> decode(std::string_view bytes, std::string_view source, const Decod
 }
 
 Result<std::vector<Section>> sections(std::string_view bytes, std::string_view source) {
-  Result<Container> container = read_container(bytes, source, true);
+  Result<Container> container = read_container(bytes, source);
   if (!container) return std::move(container).error();
   std::vector<Section> out{{"header", 0, detail::kHeaderBytes}};
   for (const Container::Part& part : container->parts)

@@ -165,6 +165,16 @@ TEST(Pdef, TheMeshIsInTheScansFrameAndUnits) {
   EXPECT_EQ(huge.error().code, ErrorCode::InvalidArgument);
 }
 
+TEST(Pdef, CurvesRunningDownwardsStillMesh) {
+  // Not what the slicer makes (chin to forehead), but a file may hold it: the default grid stays sane.
+  Face face = synthetic_face();
+  for (pde::Curve& c : face.curves.samples)
+    c = c.colwise().reverse().eval();
+  const Result<Mesh> mesh = to_mesh(face);
+  ASSERT_TRUE(mesh) << mesh.error().to_string();
+  EXPECT_EQ(mesh->vertex_count(), grid_for(face_size(face)[0], 0.0, 1.0).u * 2);
+}
+
 TEST(Pdef, SectionsAddUpToTheFile) {
   Face face = synthetic_face();
   face.name = "n";

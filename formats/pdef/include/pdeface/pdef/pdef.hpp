@@ -116,17 +116,11 @@ struct Encoded {
 //! is not positive) or a surface that cannot be built from it; `NonFinite` for a NaN or infinite number.
 [[nodiscard]] Result<Encoded> encode(const Face& face, const EncodeOptions& options = {});
 
-struct DecodeOptions {
-  //! Compare the checksum (for fuzzing the parser behind it: `false`).
-  bool verify_checksum = true;
-};
-
 //! Decodes a `.pdef` document. Errors (each with the byte offset): `Empty`, `BadMagic` (byte 0),
 //! `UnsupportedVersion` (byte 4), `UnsupportedFormat` (unknown required flags or sections), `Truncated`,
 //! `Malformed` (trailing bytes, bad field values, sections out of order), `ChecksumMismatch`,
 //! `CountTooLarge` (counts beyond the limits or beyond what the file's size can hold), `NonFinite`.
-[[nodiscard]] Result<Face> decode(std::string_view bytes, std::string_view source = {},
-                                  const DecodeOptions& options = {});
+[[nodiscard]] Result<Face> decode(std::string_view bytes, std::string_view source = {});
 
 //! One part of a file, for `pdeface info`.
 struct Section {
