@@ -6,6 +6,7 @@
 #include "pdeface/compare/encode.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/draco/draco.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/metrics/surface_distance.hpp"
 #include "pdeface/pdef/mesh.hpp"
@@ -14,7 +15,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 
 namespace pdeface::pdef {
 namespace {
@@ -108,6 +111,76 @@ TEST(PdefReconstruction, LosslessFileDecodesToTheReconstructionsMesh) {
     ASSERT_TRUE(scan);
     expect_reconstruction(scan->mesh, name);
   }
+}
+
+// The size table of docs/pdef-format.md (run on purpose: --gtest_also_run_disabled_tests
+// --gtest_filter='*Table*'): bytes of the .pdef of every ratio and maximum error, mean and largest over the
+// scans given by PDEF_TABLE_SCANS (default: the six facefuns scans and the eight ICT faces), and Draco's
+// sizes of the same scans (pdeface::draco at 11 and 14 bits, level 7).
+TEST(PdefSizes, DISABLED_Table) {
+  std::vector<std::string> names;
+  if (const char* env = std::getenv("PDEF_TABLE_SCANS")) {
+    std::string list = env;
+    for (std::size_t at = 0; at < list.size();) {
+      const std::size_t comma = std::min(list.find(',', at), list.size());
+      names.push_back(list.substr(at, comma - at));
+      at = comma + 1;
+    }
+  } else {
+    names = {"facefuns_f18.ply", "facefuns_f36.ply", "facefuns_f56.ply", "facefuns_m26.ply",
+             "facefuns_m46.ply", "facefuns_m66.ply", "ict_00.obj",       "ict_01.ply",
+             "ict_02.glb",       "ict_03.wrl",       "ict_04.obj",       "ict_05.ply",
+             "ict_06.glb",       "ict_07.wrl"};
+  }
+  const std::vector<double> ratios{0.05, 0.10, 0.15, 0.20, 0.30, 0.60};
+  const std::vector<double> errors{0.01, 0.02, 0.05, 0.1, 0.2, 0.0}; // 0: lossless
+  std::vector<std::vector<std::vector<double>>> bytes(ratios.size(),
+                                                      std::vector<std::vector<double>>(errors.size()));
+  std::vector<double> draco11, draco14;
+  for (const std::string& name : names) {
+    const auto path = test::face(name);
+    if (!path) GTEST_SKIP() << name << " not found";
+    const Mesh scan = formats::read_mesh(*path).value().mesh;
+    draco11.push_back(
+        static_cast<double>(draco::write(scan, {.position_bits = 11, .level = 7}).value().size()));
+    draco14.push_back(
+        static_cast<double>(draco::write(scan, {.position_bits = 14, .level = 7}).value().size()));
+    const align::Alignment alignment = align::align_scan(scan, std::nullopt, name).value();
+    const compare::CanonicalScan canonical = compare::canonical_scan(scan, alignment);
+    for (std::size_t r = 0; r < ratios.size(); ++r) {
+      compare::ReconstructOptions options;
+      options.profiles.ratio = ratios[r];
+      const slice::ProfileSet profiles = compare::extract_profiles(canonical, options.profiles).value();
+      const pde::Surface surface = compare::surface_from(profiles, options.pde).value();
+      const Face face = compare::to_face(profiles, surface, options.pde);
+      for (std::size_t e = 0; e < errors.size(); ++e) {
+        const Result<Encoded> encoded =
+            encode(face, {.lossless = errors[e] == 0.0, .max_error_mm = errors[e] == 0.0 ? 1.0 : errors[e]});
+        ASSERT_TRUE(encoded) << name << " " << ratios[r] << " " << errors[e];
+        bytes[r][e].push_back(static_cast<double>(encoded->bytes.size()));
+      }
+    }
+    std::fprintf(stderr, "%s done\n", name.c_str());
+  }
+  const auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (const double x : v)
+      s += x;
+    return s / static_cast<double>(v.size());
+  };
+  const auto most = [](const std::vector<double>& v) { return *std::ranges::max_element(v); };
+  std::printf("\n| ratio (K) | 0.01 mm | 0.02 mm | 0.05 mm | 0.1 mm | 0.2 mm | lossless "
+              "|\n|---|---|---|---|---|---|---|\n");
+  for (std::size_t r = 0; r < ratios.size(); ++r) {
+    std::printf("| %.0f %% (%.0f) |", 100 * ratios[r], 300 * ratios[r]);
+    for (std::size_t e = 0; e < errors.size(); ++e)
+      std::printf(" %.0f (%.0f) |", mean(bytes[r][e]), most(bytes[r][e]));
+    std::printf("\n");
+  }
+  std::printf(
+      "\nDraco, level 7: 11 bits %.0f (%.0f to %.0f), 14 bits %.0f (%.0f to %.0f) bytes over %zu scans\n",
+      mean(draco11), *std::ranges::min_element(draco11), most(draco11), mean(draco14),
+      *std::ranges::min_element(draco14), most(draco14), names.size());
 }
 
 } // namespace
