@@ -154,12 +154,20 @@ std::string curves_section(const Face& face, const Quantised* q) {
   if (q == nullptr) { // lossless: every double as it is, compressed
     for (const double x : face.planes)
       w.f64(x);
-    Writer values;
-    for (const pde::Curve& c : face.curves.samples)
-      for (Eigen::Index k = 0; k < c.rows(); ++k)
-        for (int d = 0; d < 3; ++d)
-          values.f64(c(k, d));
-    w.bytes(detail::zstd_compress(detail::shuffle(values.str(), 8), 19));
+    // x (as its bits XOR its plane's: mostly zeros), then y, then z, each byte-shuffled, in one zstd frame
+    std::string values;
+    for (int d = 0; d < 3; ++d) {
+      Writer coordinate;
+      for (std::size_t j = 0; j < curves; ++j)
+        for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(samples); ++k) {
+          const double v = face.curves.samples[j](k, d);
+          d == 0
+              ? coordinate.u64(std::bit_cast<std::uint64_t>(v) ^ std::bit_cast<std::uint64_t>(face.planes[j]))
+              : coordinate.f64(v);
+        }
+      values += detail::shuffle(coordinate.str(), 8);
+    }
+    w.bytes(detail::zstd_compress(values, 19));
     return std::move(w.str());
   }
   for (std::size_t j = 0; j < curves; ++j) // the planes: x_0, then first and second differences
@@ -468,19 +476,24 @@ void read_lossless_curves(Reader& r, Face& face, const Meta& m) {
            at);
     return;
   }
-  const std::string values = detail::unshuffle(*raw, 8);
-  Reader v(values, 0, {});
   face.curves.samples.assign(m.curves, pde::Curve(static_cast<Eigen::Index>(m.samples), 3));
-  for (std::size_t j = 0; j < m.curves; ++j)
-    for (std::size_t k = 0; k < m.samples; ++k)
-      for (int d = 0; d < 3; ++d) {
-        const double x = v.f64("a sample");
+  const std::size_t part = m.curves * m.samples * 8;
+  for (int d = 0; d < 3; ++d) {
+    const std::string values =
+        detail::unshuffle(std::string_view(*raw).substr(static_cast<std::size_t>(d) * part, part), 8);
+    Reader v(values, 0, {});
+    for (std::size_t j = 0; j < m.curves; ++j)
+      for (std::size_t k = 0; k < m.samples; ++k) {
+        const std::uint64_t bits = v.u64("a sample");
+        const double x =
+            std::bit_cast<double>(d == 0 ? bits ^ std::bit_cast<std::uint64_t>(face.planes[j]) : bits);
         if (!std::isfinite(x)) {
           r.fail(ErrorCode::NonFinite, fmt::format("sample {} of curve {} is not finite", k, j), at);
           return;
         }
         face.curves.samples[j](static_cast<Eigen::Index>(k), d) = x;
       }
+  }
 }
 
 void read_lossy_curves(Reader& r, Face& face, const Meta& m) {
