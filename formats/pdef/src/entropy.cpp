@@ -1,11 +1,6 @@
 #include "entropy.hpp"
 
 #include <draco/compression/entropy/ans.h>
-#include <draco/compression/entropy/symbol_decoding.h>
-#include <draco/compression/entropy/symbol_encoding.h>
-#include <draco/core/decoder_buffer.h>
-#include <draco/core/encoder_buffer.h>
-#include <draco/core/macros.h>
 #include <zlib.h>
 #include <zstd.h>
 
@@ -17,25 +12,6 @@
 #include <stdexcept>
 
 namespace pdeface::pdef::detail {
-
-std::string encode_symbols(std::span<const std::uint32_t> symbols) {
-  if (symbols.empty()) return {};
-  if (symbols.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw std::invalid_argument("pdef: too many symbols for Draco's coder");
-  draco::EncoderBuffer buffer;
-  if (!draco::EncodeSymbols(symbols.data(), static_cast<int>(symbols.size()), 1, nullptr, &buffer))
-    throw std::invalid_argument("pdef: Draco's symbol encoder failed");
-  return {buffer.data(), buffer.size()};
-}
-
-bool decode_symbols(std::string_view bytes, std::span<std::uint32_t> out) {
-  if (out.empty()) return bytes.empty();
-  if (out.size() > std::numeric_limits<std::uint32_t>::max()) return false;
-  draco::DecoderBuffer buffer;
-  buffer.Init(bytes.data(), bytes.size(), DRACO_BITSTREAM_VERSION(2, 2));
-  if (!draco::DecodeSymbols(static_cast<std::uint32_t>(out.size()), 1, &buffer, out.data())) return false;
-  return buffer.remaining_size() == 0;
-}
 
 namespace {
 

@@ -1,6 +1,6 @@
 #pragma once
-// The coders `.pdef` uses, behind plain types (third-party types stay in entropy.cpp): Draco's rANS symbol
-// coding, zstd, and zlib's CRC-32.
+// The coders `.pdef` uses, behind plain types (third-party types stay in entropy.cpp): Draco's rANS coder,
+// zstd, and zlib's CRC-32.
 
 #include <cstdint>
 #include <optional>
@@ -10,13 +10,6 @@
 #include <vector>
 
 namespace pdeface::pdef::detail {
-
-//! `draco::EncodeSymbols` of `symbols` (one component), Draco's default compression level.
-[[nodiscard]] std::string encode_symbols(std::span<const std::uint32_t> symbols);
-
-//! `draco::DecodeSymbols` of exactly `out.size()` symbols from `bytes`, which must be consumed whole.
-//! False when Draco refuses the data or leaves bytes over. The caller bounds `out.size()`.
-[[nodiscard]] bool decode_symbols(std::string_view bytes, std::span<std::uint32_t> out);
 
 //! Symbols coded by magnitude class (docs/pdef-format.md, "Coded integers"): values 0-3 are classes 0-3;
 //! from 4 up, two classes per power of two, each followed by its value's lower bits. The classes are
