@@ -50,6 +50,15 @@ void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks) {
       ->check(CLI::ExistingFile);
 }
 
+void add_resolution(CLI::App* cmd, std::vector<std::size_t>& resolution) {
+  cmd->add_option("--resolution", resolution,
+                  "Grid: V points along the face's height (across in proportion), or UxV; default about 1 mm "
+                  "spacing")
+      ->delimiter('x')
+      ->expected(1, 2)
+      ->check(CLI::Range(std::size_t{2}, std::size_t{4000}));
+}
+
 void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
   cmd->add_option("--draco-bits", write.draco_bits, "Draco position quantisation bits (1..24)")
       ->check(CLI::Range(1, 24))

@@ -73,6 +73,8 @@ void add_input(CLI::App* cmd, std::filesystem::path& in, const std::string& desc
 void add_output(CLI::App* cmd, std::filesystem::path& out, const std::string& description);
 //! --landmarks: a landmark file to use instead of detecting them.
 void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks);
+//! --resolution V or UxV: the surface's grid (V along the face's height, U across).
+void add_resolution(CLI::App* cmd, std::vector<std::size_t>& resolution);
 void add_write_options(CLI::App* cmd, formats::WriteOptions& write);
 
 //! How a scan becomes curves: landmarks given or detected, and the slicing options.

@@ -43,12 +43,7 @@ void decode_command(CLI::App& app, int& status) {
   add_input(cmd, args->in, "The .pdef file");
   cmd->add_option("-o,--output", args->out, "Mesh to write (.glb .gltf .obj .ply .wrl .drc .off .stl)")
       ->required();
-  cmd->add_option("--resolution", args->resolution,
-                  "Grid: V points along the face's height (across in proportion), or UxV; default about 1 mm "
-                  "spacing")
-      ->delimiter('x')
-      ->expected(1, 2)
-      ->check(CLI::Range(std::size_t{2}, std::size_t{4000}));
+  add_resolution(cmd, args->resolution);
   add_write_options(cmd, args->write);
   cmd->callback([args, &status] { status = run_decode(*args); });
 }

@@ -96,12 +96,7 @@ void reconstruct_command(CLI::App& app, int& status) {
   cmd->add_option("--profiles", args->profiles, "Also write the curves as JSON");
   cmd->add_option("--preview", args->preview,
                   "Also write an SVG: the scan and the reconstruction side by side, and turned");
-  cmd->add_option("--resolution", args->resolution,
-                  "Grid: V points along the face's height (across in proportion), or UxV; default about 1 mm "
-                  "spacing")
-      ->delimiter('x')
-      ->expected(1, 2)
-      ->check(CLI::Range(std::size_t{2}, std::size_t{4000}));
+  add_resolution(cmd, args->resolution);
   args->curves.add_to(cmd);
   args->surface.add_to(cmd);
   add_write_options(cmd, args->write);
