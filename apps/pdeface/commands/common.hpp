@@ -35,6 +35,7 @@ void align_command(CLI::App& app, int& status);
 void profiles_command(CLI::App& app, int& status);
 void reconstruct_command(CLI::App& app, int& status);
 void table_command(CLI::App& app, int& status);
+void compare_command(CLI::App& app, int& status);
 
 //! Prints the notes collected so far and forgets them, so that the next step's are printed once.
 void print_notes(Notes& notes);
