@@ -79,7 +79,8 @@ TEST_F(Cli, VersionAndHelp) {
   Outcome v = run({"--version"});
   EXPECT_EQ(v.exit_code, 0);
   EXPECT_NE(v.out.find("pdeface 0."), std::string::npos);
-  for (const char* cmd : {"info", "convert", "sample", "align", "profiles", "reconstruct", "table", "compare"}) {
+  for (const char* cmd :
+       {"info", "convert", "sample", "align", "profiles", "reconstruct", "table", "compare"}) {
     Outcome h = run({cmd, "--help"});
     EXPECT_EQ(h.exit_code, 0) << cmd;
     EXPECT_NE(h.out.find("Usage"), std::string::npos) << cmd;
@@ -414,8 +415,8 @@ TEST_F(Cli, CompareBatchReportsABadScanAndCompletesTheOthers) {
   ASSERT_EQ(run({"sample", "--seed", "3", path("scans/b.obj")}).exit_code, 0);
   std::ofstream(work_ / "scans" / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 3\n";
   std::ofstream(work_ / "scans" / "notes.txt") << "not a scan\n";
-  const Outcome r = run({"compare", path("scans"), "--out", path("rep"), "--draco-bits", "11", "--budgets", "2048",
-                         "--ratios", "0.1", "--lossy-only", "--decimate-bits", "10,11,12"});
+  const Outcome r = run({"compare", path("scans"), "--out", path("rep"), "--draco-bits", "11", "--budgets",
+                         "2048", "--ratios", "0.1", "--lossy-only", "--decimate-bits", "10,11,12"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("error: " + path("scans/broken.ply")), std::string::npos) << r.err;
   EXPECT_NE(r.out.find("3 scans (1 failed)"), std::string::npos) << r.out;

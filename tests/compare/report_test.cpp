@@ -92,7 +92,8 @@ TEST(Compare, SampleFaceHasEveryKindOfVariantMeasured) {
 
 TEST(Compare, DracoErrorsShrinkWithMoreBits) {
   const ScanReport& s = sample_report().scans[0];
-  const Variant *d8 = find(s, "draco 8 bits"), *d11 = find(s, "draco 11 bits"), *d14 = find(s, "draco 14 bits");
+  const Variant *d8 = find(s, "draco 8 bits"), *d11 = find(s, "draco 11 bits"),
+                *d14 = find(s, "draco 14 bits");
   ASSERT_TRUE(d8 && d11 && d14);
   EXPECT_LT(d8->bytes, d11->bytes);
   EXPECT_LT(d11->bytes, d14->bytes);
@@ -207,7 +208,8 @@ TEST(Compare, HeatMapGlbsPassTheValidator) {
     ASSERT_TRUE(back) << back.error().to_string();
     EXPECT_TRUE(back->mesh.has_colors());
     // Colours vary (the error is not the same everywhere).
-    const auto [lo, hi] = std::ranges::minmax_element(back->mesh.colors, {}, [](const Vec4f& c) { return c[0]; });
+    const auto [lo, hi] =
+        std::ranges::minmax_element(back->mesh.colors, {}, [](const Vec4f& c) { return c[0]; });
     EXPECT_LT((*lo)[0], (*hi)[0]);
   }
   PDEFACE_GLTF_VALIDATOR_OR_SKIP(node, validator);
@@ -221,7 +223,8 @@ TEST(Compare, HeatMapGlbsPassTheValidator) {
 TEST(Compare, UnreadableAndFacelessScansAreReportedAndTheOthersGoOn) {
   test::TempDir dir;
   ASSERT_TRUE(formats::write_mesh(sample_face(), dir / "face.ply"));
-  ASSERT_TRUE(write_file_atomic(dir / "broken.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 9\n"));
+  ASSERT_TRUE(
+      write_file_atomic(dir / "broken.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 9\n"));
   Mesh flat; // a plane: no face
   for (int i = 0; i < 20; ++i)
     for (int j = 0; j < 20; ++j)
@@ -241,9 +244,8 @@ TEST(Compare, UnreadableAndFacelessScansAreReportedAndTheOthersGoOn) {
   o.ratios = {0.1};
   o.pde_lossless = false;
   std::vector<Progress> seen;
-  const Report r = compare_scans({.inputs = inputs, .options = o, .progress = [&](const Progress& p) {
-                                    seen.push_back(p);
-                                  }});
+  const Report r = compare_scans(
+      {.inputs = inputs, .options = o, .progress = [&](const Progress& p) { seen.push_back(p); }});
   ASSERT_EQ(r.scans.size(), 3U);
   EXPECT_EQ(r.failed(), 2U);
   EXPECT_NE(r.scans[0].failure.find("broken.ply"), std::string::npos) << r.scans[0].failure;

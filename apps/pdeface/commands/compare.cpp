@@ -40,7 +40,8 @@ public:
       return;
     }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double share = p.steps_total ? static_cast<double>(p.steps_done) / static_cast<double>(p.steps_total) : 0;
+    const double share =
+        p.steps_total ? static_cast<double>(p.steps_done) / static_cast<double>(p.steps_total) : 0;
     const int filled = static_cast<int>(share * 30.0);
     std::string eta = "--:--";
     if (share > 0.02) {
@@ -51,8 +52,8 @@ public:
     if (what.size() > 40) what = what.substr(0, 39) + "…";
     fmt::print(stderr, "\r[{}{}] {}/{} scans{} {:3.0f} %  ETA {}  {:<41}", std::string(filled, '#'),
                std::string(30 - filled, ' '), p.scans_done, p.scans_total,
-               p.scans_failed ? fmt::format(" ({} failed)", p.scans_failed) : std::string(), 100.0 * share, eta,
-               what);
+               p.scans_failed ? fmt::format(" ({} failed)", p.scans_failed) : std::string(), 100.0 * share,
+               eta, what);
     if (failed) fmt::print(stderr, "\npdeface: error: {}\n", p.what.substr(8));
     if (p.scans_done == p.scans_total) fmt::print(stderr, "\n");
   }
@@ -73,7 +74,8 @@ Result<void> write_report(const std::vector<OutputFile>& files) {
     for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
       std::error_code ec;
       if (!fs::create_directory(*it, ec) && ec)
-        return make_error(ErrorCode::Io, fmt::format("cannot make the folder: {}", ec.message()), it->string());
+        return make_error(ErrorCode::Io, fmt::format("cannot make the folder: {}", ec.message()),
+                          it->string());
       made.push_back(*it);
     }
   }
@@ -127,10 +129,11 @@ int run_compare(CompareArgs args) {
                    v->name, v->bytes, 100 * v->fidelity->coverage.share, v->fidelity->coverage.distance.mean,
                    v->fidelity->to_scan.mean);
   }
-  fmt::print("{} scan{} ({} failed) -> {}/report.md, report.html, report.json, report.csv, rd.svg and {} heat-map "
-             "GLB{}\n",
-             report.scans.size(), report.scans.size() == 1 ? "" : "s", report.failed(), args.out.string(),
-             files.size() - 5, files.size() == 6 ? "" : "s");
+  fmt::print(
+      "{} scan{} ({} failed) -> {}/report.md, report.html, report.json, report.csv, rd.svg and {} heat-map "
+      "GLB{}\n",
+      report.scans.size(), report.scans.size() == 1 ? "" : "s", report.failed(), args.out.string(),
+      files.size() - 5, files.size() == 6 ? "" : "s");
   return report.failed() > 0 ? kDataError : 0;
 }
 
@@ -154,7 +157,8 @@ void compare_command(CLI::App& app, int& status) {
   cmd->add_flag("--lossy-only", args->lossy_only, "Only the lossy .pdef variants");
   cmd->add_flag("--lossless-only", args->lossless_only, "Only the lossless .pdef variants")
       ->excludes("--lossy-only");
-  cmd->add_option("--draco-bits", args->options.draco_bits, "Draco quantisation bits, comma-separated (1..24)")
+  cmd->add_option("--draco-bits", args->options.draco_bits,
+                  "Draco quantisation bits, comma-separated (1..24)")
       ->delimiter(',')
       ->check(CLI::Range(1, 24))
       ->capture_default_str();
@@ -176,7 +180,8 @@ void compare_command(CLI::App& app, int& status) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_flag("--files", args->files, "Also write every variant's encoded file (DIR/files/SCAN/)");
-  cmd->add_option("--threads", args->options.threads, "Threads per scan (default: shared out over the cores)");
+  cmd->add_option("--threads", args->options.threads,
+                  "Threads per scan (default: shared out over the cores)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress on stderr");
   cmd->callback([args, &status] { status = run_compare(*args); });
 }

@@ -164,9 +164,10 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
   f.profile_error = evaluation_errors(profiles.evaluation, reconstruction);
   for (std::size_t i = 0; i < 4; ++i) {
     if (std::isnan(f.profile_error[i]))
-      return make_error(ErrorCode::NoFace, fmt::format("the reconstruction has no surface on the {} evaluation "
-                                                       "profile",
-                                                       profiles.evaluation[i].name));
+      return make_error(ErrorCode::NoFace,
+                        fmt::format("the reconstruction has no surface on the {} evaluation "
+                                    "profile",
+                                    profiles.evaluation[i].name));
     f.mean_profile_error += f.profile_error[i] / 4.0;
   }
 
@@ -217,7 +218,7 @@ struct FaceYardstick::State {
   std::vector<slice::EvaluationProfile> evaluation;
   FidelityOptions options;
   FrontView view;
-  std::vector<Vec3> samples;         // the scan's face: front-most samples inside the mask
+  std::vector<Vec3> samples;        // the scan's face: front-most samples inside the mask
   metrics::SurfaceDistance to_scan; // over `scan`, which lives as long as this
 };
 
@@ -247,7 +248,8 @@ Result<MeshFidelity> FaceYardstick::measure(const Mesh& mesh) const {
     f.to_scan.mean = f.to_scan.rms = f.to_scan.p95 = f.to_scan.max = nan;
   }
   f.profile_error = evaluation_errors(s.evaluation, mesh);
-  f.mean_profile_error = (f.profile_error[0] + f.profile_error[1] + f.profile_error[2] + f.profile_error[3]) / 4;
+  f.mean_profile_error =
+      (f.profile_error[0] + f.profile_error[1] + f.profile_error[2] + f.profile_error[3]) / 4;
   return f;
 }
 

@@ -23,8 +23,8 @@ Eigen::Vector3f heat_colour(double distance_mm, double scale_mm) {
   return (1.0F - f) * kStops[i] + f * kStops[i + 1];
 }
 
-HeatMap heat_map(const Mesh& mesh, const FaceYardstick& yardstick, double scale_mm, const std::string& variant,
-                 const std::string& file) {
+HeatMap heat_map(const Mesh& mesh, const FaceYardstick& yardstick, double scale_mm,
+                 const std::string& variant, const std::string& file) {
   const slice::FaceMask& mask = yardstick.mask();
   const auto colour = [&](const Vec3& p) -> Eigen::Vector3f {
     return mask.contains(p) ? heat_colour(yardstick.distance_to_scan(p), scale_mm) : kUnjudged;
@@ -48,12 +48,12 @@ HeatMap heat_map(const Mesh& mesh, const FaceYardstick& yardstick, double scale_
   Result<std::string> glb = formats::encode_mesh(coloured, file, {.format = formats::Format::Glb});
   if (glb) out.glb = *std::move(glb);
   const svg::FrontViewBox box{-1.25 * mask.half_width, 1.25 * mask.half_width,
-                              mask.centre_y - 1.15 * mask.half_height, mask.centre_y + 1.15 * mask.half_height,
-                              0.4};
+                              mask.centre_y - 1.15 * mask.half_height,
+                              mask.centre_y + 1.15 * mask.half_height, 0.4};
   out.front_svg = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{:.1f} {:.1f} {:.1f} {:.1f}\" width=\"{:.0f}\" "
       "height=\"{:.0f}\">\n{}</svg>\n",
-      box.x0, -box.y1, box.x1 - box.x0, box.y1 - box.y0, 2.0 * (box.x1 - box.x0), 2.0 * (box.y1 - box.y0),
+      box.x0, -box.y1, box.x1 - box.x0, box.y1 - box.y0, 1.5 * (box.x1 - box.x0), 1.5 * (box.y1 - box.y0),
       svg::front_view_image(mesh, box, colour));
   return out;
 }

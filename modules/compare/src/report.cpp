@@ -33,9 +33,8 @@ std::string_view to_string(Method method) noexcept {
 }
 
 std::size_t Report::failed() const {
-  return static_cast<std::size_t>(std::ranges::count_if(scans, [](const ScanReport& s) {
-    return !s.failure.empty();
-  }));
+  return static_cast<std::size_t>(
+      std::ranges::count_if(scans, [](const ScanReport& s) { return !s.failure.empty(); }));
 }
 
 namespace {
@@ -45,7 +44,9 @@ using detail::Encoded;
 constexpr std::array<formats::Format, 4> kRawFormats{formats::Format::Obj, formats::Format::Ply,
                                                      formats::Format::Vrml, formats::Format::Glb};
 
-std::string extension(formats::Format format) { return std::string(formats::info(format).extensions.front()); }
+std::string extension(formats::Format format) {
+  return std::string(formats::info(format).extensions.front());
+}
 
 // One variant to make: what it is, and how its bytes are made and decoded.
 struct Task {
@@ -105,7 +106,9 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   geometry.triangles = scan.triangles;
   geometry.units = scan.units;
   geometry.name = scan.name;
-  const auto in_canonical = [&](const Mesh& decoded) { return align::to_canonical(decoded, canonical.frame); };
+  const auto in_canonical = [&](const Mesh& decoded) {
+    return align::to_canonical(decoded, canonical.frame);
+  };
   const auto measure = [&](Task& task, const Result<Encoded>& e) {
     if (!e) {
       task.variant.failure = e.error().message;
@@ -135,13 +138,12 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   for (bool gzipped : {false, true})
     for (formats::Format f : kRawFormats) {
       const std::string ext = extension(f) + (gzipped ? ".gz" : "");
-      tasks.push_back({.variant = {.method = gzipped ? Method::Gzip : Method::Raw,
-                                   .name = ext.substr(1),
-                                   .extension = ext,
-                                   .lossless = true},
-                       .make = [&, f, gzipped] {
-                         return detail::encode_raw(geometry, f, gzipped, options.gzip_level);
-                       }});
+      tasks.push_back(
+          {.variant = {.method = gzipped ? Method::Gzip : Method::Raw,
+                       .name = ext.substr(1),
+                       .extension = ext,
+                       .lossless = true},
+           .make = [&, f, gzipped] { return detail::encode_raw(geometry, f, gzipped, options.gzip_level); }});
     }
   for (int bits : options.draco_bits)
     tasks.push_back({.variant = {.method = Method::Draco,
@@ -160,9 +162,10 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
                        .extension = ".pdef",
                        .ratio = ratio,
                        .lossless = lossless},
-           .make = [&, ratio, lossless] {
-             return detail::encode_pde(scan, *alignment, ratio, lossless, options.scheme, name);
-           },
+           .make =
+               [&, ratio, lossless] {
+                 return detail::encode_pde(scan, *alignment, ratio, lossless, options.scheme, name);
+               },
            .keep_mesh = !lossless && std::abs(ratio - options.heat_ratio) < 1e-9});
     }
   run(tasks);
@@ -198,21 +201,20 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
       }
   std::vector<Task> decimated;
   for (const auto& [budget, label] : budgets)
-    decimated.push_back(
-        {.variant = {.method = Method::DecimateDraco,
-                     .name = label,
-                     .extension = ".drc",
-                     .budget = budget,
-                     .lossless = false},
-         .make =
-             [&, budget]() -> Result<Encoded> {
-               Result<detail::Decimated> d = detail::decimate_to_budget(
-                   geometry, budget, options,
-                   [&](const Mesh& decoded) { return yardstick.quick_mask_mean(in_canonical(decoded)); });
-               if (!d) return std::move(d).error();
-               return std::move(d->encoded);
-             },
-         .keep_mesh = label == heat_label});
+    decimated.push_back({.variant = {.method = Method::DecimateDraco,
+                                     .name = label,
+                                     .extension = ".drc",
+                                     .budget = budget,
+                                     .lossless = false},
+                         .make = [&, budget]() -> Result<Encoded> {
+                           Result<detail::Decimated> d = detail::decimate_to_budget(
+                               geometry, budget, options, [&](const Mesh& decoded) {
+                                 return yardstick.quick_mask_mean(in_canonical(decoded));
+                               });
+                           if (!d) return std::move(d).error();
+                           return std::move(d->encoded);
+                         },
+                         .keep_mesh = label == heat_label});
   run(decimated);
 
   // The rows, in a reading order: raw, gzip, Draco, decimate + Draco, PDE.
@@ -225,14 +227,15 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   for (Task& t : tasks)
     if (t.variant.method == Method::Pde) order.push_back(&t);
   for (const Task* t : order)
-    if (t->variant.method == Method::Raw && t->variant.extension == ".ply") report.ply_bytes = t->variant.bytes;
+    if (t->variant.method == Method::Raw && t->variant.extension == ".ply")
+      report.ply_bytes = t->variant.bytes;
   for (Task* t : order) {
     if (report.ply_bytes > 0)
       t->variant.ratio_to_ply = static_cast<double>(t->variant.bytes) / static_cast<double>(report.ply_bytes);
     if (t->keep_mesh && t->decoded && t->variant.fidelity)
-      report.heat_maps.push_back(detail::heat_map(in_canonical(*t->decoded), yardstick, options.heat_max_mm,
-                                                  t->variant.name,
-                                                  detail::slug(report.name) + "_" + detail::slug(t->variant.name) + ".glb"));
+      report.heat_maps.push_back(
+          detail::heat_map(in_canonical(*t->decoded), yardstick, options.heat_max_mm, t->variant.name,
+                           detail::slug(report.name) + "_" + detail::slug(t->variant.name) + ".glb"));
     report.variants.push_back(std::move(t->variant));
   }
   report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
@@ -246,7 +249,8 @@ Result<std::vector<std::filesystem::path>> expand_inputs(std::span<const std::fi
     if (std::filesystem::is_directory(in, ec)) {
       std::vector<std::filesystem::path> files;
       for (const auto& entry : std::filesystem::directory_iterator(in, ec))
-        if (entry.is_regular_file(ec) && formats::format_from_path(entry.path())) files.push_back(entry.path());
+        if (entry.is_regular_file(ec) && formats::format_from_path(entry.path()))
+          files.push_back(entry.path());
       if (ec) return make_error(ErrorCode::Io, ec.message(), in.string());
       std::ranges::sort(files);
       out.insert(out.end(), files.begin(), files.end());
@@ -266,8 +270,8 @@ Report compare_scans(const CompareRequest& request) {
   const std::size_t count = sample ? 1 : request.inputs.size();
   report.scans.resize(count);
   // Steps per scan: aligning, then every variant (the decimated rows at the PDE sizes included).
-  const std::size_t pde_rows =
-      request.options.ratios.size() * ((request.options.pde_lossy ? 1 : 0) + (request.options.pde_lossless ? 1 : 0));
+  const std::size_t pde_rows = request.options.ratios.size() *
+                               ((request.options.pde_lossy ? 1 : 0) + (request.options.pde_lossless ? 1 : 0));
   const std::size_t steps = 1 + 2 * kRawFormats.size() + request.options.draco_bits.size() + pde_rows +
                             request.options.budgets.size() + (request.options.budgets_at_pde ? pde_rows : 0);
   Progress progress{.steps_total = steps * count, .scans_total = count};

@@ -46,8 +46,7 @@ struct Series {
 std::string tag_of(const detail::Aggregate& a) {
   if (a.method == Method::Draco) return a.name.substr(6, a.name.find(' ', 6) - 6); // "draco 11 bits" -> 11
   if (a.method == Method::Pde) return a.name.substr(4, a.name.find('%') - 3);      // "pde 10 % ..." -> 10 %
-  if (a.method == Method::Raw || a.method == Method::Gzip) return a.name;
-  return {};
+  return {}; // raw files: the legend says which; decimate + Draco: its budgets follow the x axis
 }
 
 std::vector<Series> series_of(const Report& report) {
@@ -90,14 +89,14 @@ std::vector<Series> series_of(const Report& report) {
 double nice_ceiling(double v) {
   if (!(v > 0)) return 1.0;
   const double p = std::pow(10.0, std::floor(std::log10(v)));
-  for (double m : {1.0, 2.0, 2.5, 5.0, 10.0})
+  for (double m : {1.0, 1.5, 2.0, 2.5, 3.0, 4.0, 5.0, 6.0, 8.0, 10.0})
     if (m * p >= v) return m * p;
   return 10.0 * p;
 }
 
-std::string bytes_label(double b) {
-  if (b >= 1024.0 * 1024.0) return fmt::format("{:g} MB", b / (1024.0 * 1024.0));
-  if (b >= 1024.0) return fmt::format("{:g} KB", b / 1024.0);
+std::string bytes_label(double b) { // SI, as the decades fall
+  if (b >= 1e6) return fmt::format("{:g} MB", b / 1e6);
+  if (b >= 1e3) return fmt::format("{:g} kB", b / 1e3);
   return fmt::format("{:g} B", b);
 }
 
@@ -139,14 +138,15 @@ std::string colour_bar(double scale_mm) {
   std::string stops;
   for (int i = 0; i <= 8; ++i) {
     const Eigen::Vector3f c = detail::heat_colour(scale_mm * i / 8.0, scale_mm);
-    stops += fmt::format("<stop offset=\"{:g}\" stop-color=\"rgb({:.0f},{:.0f},{:.0f})\"/>", i / 8.0, 255 * c[0],
-                         255 * c[1], 255 * c[2]);
+    stops += fmt::format("<stop offset=\"{:g}\" stop-color=\"rgb({:.0f},{:.0f},{:.0f})\"/>", i / 8.0,
+                         255 * c[0], 255 * c[1], 255 * c[2]);
   }
   return fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"360\" height=\"34\" font-family=\"sans-serif\" "
       "font-size=\"11\"><defs><linearGradient id=\"heat\">{}</linearGradient></defs>"
       "<rect x=\"10\" y=\"2\" width=\"260\" height=\"14\" fill=\"url(#heat)\"/>"
-      "<text x=\"10\" y=\"30\">0 mm</text><text x=\"270\" y=\"30\" text-anchor=\"end\">{:g} mm and beyond</text>"
+      "<text x=\"10\" y=\"30\">0 mm</text><text x=\"270\" y=\"30\" text-anchor=\"end\">{:g} mm and "
+      "beyond</text>"
       "<rect x=\"290\" y=\"2\" width=\"14\" height=\"14\" fill=\"rgb(199,199,199)\"/>"
       "<text x=\"308\" y=\"13\">not judged</text></svg>",
       stops, scale_mm);
@@ -182,8 +182,8 @@ std::string rd_svg(const Report& report) {
     for (double m : {1.0, 2.0, 5.0}) {
       const double b = m * std::pow(10.0, d);
       if (std::log10(b) > x1 + 1e-9) continue;
-      doc += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"{3}\"/>\n", px(b), kTop,
-                         kTop + ph, m == 1.0 ? "#bbb" : "#eee");
+      doc += fmt::format("<line x1=\"{0:.1f}\" x2=\"{0:.1f}\" y1=\"{1}\" y2=\"{2}\" stroke=\"{3}\"/>\n",
+                         px(b), kTop, kTop + ph, m == 1.0 ? "#bbb" : "#eee");
       if (m == 1.0)
         doc += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">{}</text>\n", px(b),
                            kTop + ph + 16, bytes_label(b));
@@ -194,13 +194,14 @@ std::string rd_svg(const Report& report) {
                        "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5:g}</text>\n",
                        kLeft, kLeft + pw, py(e), kLeft - 6, py(e) + 4, e);
   }
-  doc += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n", kLeft,
-                     kTop, pw, ph);
+  doc += fmt::format("<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#333\"/>\n",
+                     kLeft, kTop, pw, ph);
   doc += fmt::format("<text x=\"{:.1f}\" y=\"{}\" text-anchor=\"middle\">bytes (log scale)</text>\n",
                      kLeft + pw / 2, kHeight - 18);
-  doc += fmt::format("<text transform=\"translate(18,{:.1f}) rotate(-90)\" text-anchor=\"middle\">mean distance, "
-                     "scan's face → decoded mesh (mm)</text>\n",
-                     kTop + ph / 2);
+  doc += fmt::format(
+      "<text transform=\"translate(18,{:.1f}) rotate(-90)\" text-anchor=\"middle\">mean distance, "
+      "scan's face → decoded mesh (mm)</text>\n",
+      kTop + ph / 2);
   // The series, and the legend beside the plot.
   for (std::size_t i = 0; i < series.size(); ++i) {
     const Series& s = series[i];
@@ -208,21 +209,24 @@ std::string rd_svg(const Report& report) {
       std::string points;
       for (const auto& [b, e] : s.points)
         points += fmt::format("{:.1f},{:.1f} ", px(b), py(e));
-      doc += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" points=\"{}\"/>\n", s.colour,
-                         points);
+      doc += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" points=\"{}\"/>\n",
+                         s.colour, points);
     }
     for (std::size_t k = 0; k < s.points.size(); ++k) {
       const auto [b, e] = s.points[k];
-      doc += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/>\n", px(b), py(e), s.colour);
-      if (!s.tags[k].empty())
-        doc += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"{}\">{}</text>\n", px(b) + 5,
-                           py(e) - 5, s.colour, svg::escape(s.tags[k]));
+      doc +=
+          fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/>\n", px(b), py(e), s.colour);
+      const bool crowded = s.label.starts_with("Draco") && k % 2 == 1 && k + 1 != s.points.size();
+      if (!s.tags[k].empty() && !crowded)
+        doc += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"{}\">{}</text>\n",
+                           px(b) + 5, py(e) - 5, s.colour, svg::escape(s.tags[k]));
     }
     const double ly = kTop + 10 + 22.0 * static_cast<double>(i), lx = kLeft + pw + 16;
-    doc += fmt::format("<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"{3}\" stroke-width=\"{4}\"/>"
-                       "<circle cx=\"{5}\" cy=\"{2}\" r=\"4\" fill=\"{3}\"/>"
-                       "<text x=\"{6}\" y=\"{7}\">{8}</text>\n",
-                       lx, lx + 24, ly, s.colour, s.line ? 2 : 0, lx + 12, lx + 30, ly + 4, svg::escape(s.label));
+    doc += fmt::format(
+        "<line x1=\"{0}\" x2=\"{1}\" y1=\"{2}\" y2=\"{2}\" stroke=\"{3}\" stroke-width=\"{4}\"/>"
+        "<circle cx=\"{5}\" cy=\"{2}\" r=\"4\" fill=\"{3}\"/>"
+        "<text x=\"{6}\" y=\"{7}\">{8}</text>\n",
+        lx, lx + 24, ly, s.colour, s.line ? 2 : 0, lx + 12, lx + 30, ly + 4, svg::escape(s.label));
   }
   return doc + "</svg>\n";
 }
@@ -245,8 +249,8 @@ std::string report_html(const Report& report) {
   for (const ScanReport& scan : report.scans)
     any_heat = any_heat || !scan.heat_maps.empty();
   if (any_heat) {
-    page += "<h2>Heat maps: each point's distance to the scan</h2>\n" + colour_bar(report.options.heat_max_mm) +
-            "<br>\n";
+    page += "<h2>Heat maps: each point's distance to the scan</h2>\n" +
+            colour_bar(report.options.heat_max_mm) + "<br>\n";
     for (const ScanReport& scan : report.scans)
       for (const HeatMap& h : scan.heat_maps)
         page += fmt::format("<figure>{}<figcaption>{}: {} (<a href=\"{}\">{}</a>)</figcaption></figure>\n",
@@ -259,7 +263,8 @@ std::string report_html(const Report& report) {
       page += "<p>" + svg::escape(scan.failure) + "</p>\n";
       continue;
     }
-    page += fmt::format("<p>Raw binary PLY: {} bytes.</p>\n", scan.ply_bytes) + detail::html(detail::scan_table(scan));
+    page += fmt::format("<p>Raw binary PLY: {} bytes.</p>\n", scan.ply_bytes) +
+            detail::html(detail::scan_table(scan));
   }
   return page + "</body></html>\n";
 }
@@ -275,7 +280,8 @@ std::vector<OutputFile> report_files(const Report& report, const std::filesystem
       if (!h.glb.empty()) files.push_back({folder / h.file, h.glb});
     for (const Variant& v : scan.variants)
       if (!v.encoded.empty())
-        files.push_back({folder / "files" / detail::slug(scan.name) / (detail::slug(v.name) + v.extension), v.encoded});
+        files.push_back(
+            {folder / "files" / detail::slug(scan.name) / (detail::slug(v.name) + v.extension), v.encoded});
   }
   return files;
 }

@@ -7,8 +7,8 @@
 
 #include <algorithm>
 #include <cctype>
-#include <functional>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace pdeface::compare {
@@ -45,15 +45,17 @@ std::string number(double v, int digits = 3) {
 std::string bytes_text(double b) {
   if (!std::isfinite(b)) return "–";
   if (b < 10'000) return fmt::format("{:.0f}", b);
-  if (b < 10'000'000) return fmt::format("{:.1f} K", b / 1024.0);
-  return fmt::format("{:.2f} M", b / (1024.0 * 1024.0));
+  if (b < 10'000'000) return fmt::format("{:.1f} k", b / 1e3);
+  return fmt::format("{:.2f} M", b / 1e6);
 }
 std::string ratio_text(double r) {
   if (!std::isfinite(r)) return "–";
   return r >= 0.1 ? fmt::format("{:.2f}", r) : fmt::format("1/{:.0f}", 1.0 / r);
 }
 std::string milliseconds(double ms) {
-  return !std::isfinite(ms) ? std::string("–") : ms < 10 ? fmt::format("{:.1f}", ms) : fmt::format("{:.0f}", ms);
+  return !std::isfinite(ms) ? std::string("–")
+         : ms < 10          ? fmt::format("{:.1f}", ms)
+                            : fmt::format("{:.0f}", ms);
 }
 std::string plus_minus(const Stat& s, const std::function<std::string(double)>& format) {
   if (s.n == 0) return "–";
@@ -157,8 +159,9 @@ Table summary_table(const Report& report) {
     t.rows.push_back({a.name, fmt::format("{}", a.bytes.n), plus_minus(a.bytes, bytes_text),
                       plus_minus(a.ratio_to_ply, ratio_text),
                       plus_minus(a.triangles, [](double v) { return fmt::format("{:.0f}", v); }),
-                      plus_minus(a.coverage, [](double v) { return number(v, 1); }), plus_minus(a.mask_mean, f3),
-                      plus_minus(a.to_scan_mean, f3), plus_minus(a.to_scan_p95, f3), plus_minus(a.to_scan_max, f3),
+                      plus_minus(a.coverage, [](double v) { return number(v, 1); }),
+                      plus_minus(a.mask_mean, f3), plus_minus(a.to_scan_mean, f3),
+                      plus_minus(a.to_scan_p95, f3), plus_minus(a.to_scan_max, f3),
                       plus_minus(a.profile_error, f3), plus_minus(a.encode_ms, milliseconds),
                       plus_minus(a.decode_ms, milliseconds)});
   return t;
@@ -166,21 +169,25 @@ Table summary_table(const Report& report) {
 
 Table scan_table(const ScanReport& scan) {
   Table t{.header = {"variant", "bytes", "× PLY", "bits", "vertices", "triangles", "encode ms", "decode ms",
-                     "coverage (%)", "mask → mesh mean", "mask → mesh p95", "mesh → scan mean", "RMS", "p95", "max",
-                     "profile error"},
+                     "coverage (%)", "mask → mesh mean", "mask → mesh p95", "mesh → scan mean", "RMS", "p95",
+                     "max", "profile error"},
           .right = {false, true, true, true, true, true, true, true, true, true, true, true, true, true, true,
                     true}};
   for (const Variant& v : scan.variants) {
-    std::vector<std::string> row{v.name, fmt::format("{}", v.bytes), ratio_text(v.ratio_to_ply),
+    std::vector<std::string> row{v.name,
+                                 fmt::format("{}", v.bytes),
+                                 ratio_text(v.ratio_to_ply),
                                  v.bits > 0 ? fmt::format("{}", v.bits) : std::string("–"),
-                                 fmt::format("{}", v.vertices), fmt::format("{}", v.triangles),
-                                 milliseconds(v.encode_ms), milliseconds(v.decode_ms)};
+                                 fmt::format("{}", v.vertices),
+                                 fmt::format("{}", v.triangles),
+                                 milliseconds(v.encode_ms),
+                                 milliseconds(v.decode_ms)};
     if (v.fidelity) {
       const MeshFidelity& f = *v.fidelity;
       for (const std::string& cell :
-           {number(100.0 * f.coverage.share, 1), number(f.coverage.distance.mean), number(f.coverage.distance.p95),
-            number(f.to_scan.mean), number(f.to_scan.rms), number(f.to_scan.p95), number(f.to_scan.max),
-            number(f.mean_profile_error)})
+           {number(100.0 * f.coverage.share, 1), number(f.coverage.distance.mean),
+            number(f.coverage.distance.p95), number(f.to_scan.mean), number(f.to_scan.rms),
+            number(f.to_scan.p95), number(f.to_scan.max), number(f.mean_profile_error)})
         row.push_back(cell);
     } else {
       row.push_back("failed: " + v.failure);
@@ -215,7 +222,8 @@ std::string method_notes(const Report& report) {
       "(mean, RMS, 95th percentile, max).\n"
       "- **profile error**: the paper's Table I measure on the 4 evaluation profiles (symmetry, eyes, two "
       "diagonals through the nose tip), mean of the four.\n"
-      "- **bytes**: of the file as written; **× PLY**: against the raw binary PLY; **encode / decode ms**: "
+      "- **bytes**: of the file as written (k = 1000, M = 10⁶ in the summary); **× PLY**: against the raw "
+      "binary PLY; **encode / decode ms**: "
       "one run on one core of this machine (decimate + Draco: simplifying and encoding the row's mesh; the "
       "search for it is not counted). Draco at level {}; decimate + Draco: meshoptimizer's simplifier to "
       "the most triangles whose Draco bytes land within {:g} % under the budget, for each of {} bits, "
@@ -240,7 +248,8 @@ std::string report_markdown(const Report& report) {
       out += scan.failure + "\n";
       continue;
     }
-    out += fmt::format("Raw binary PLY: {} bytes.\n\n", scan.ply_bytes) + detail::markdown(detail::scan_table(scan));
+    out += fmt::format("Raw binary PLY: {} bytes.\n\n", scan.ply_bytes) +
+           detail::markdown(detail::scan_table(scan));
     if (!scan.heat_maps.empty()) {
       out += "\nHeat maps (GLB, canonical frame, mm):";
       for (const HeatMap& h : scan.heat_maps)
@@ -271,25 +280,26 @@ std::string report_csv(const Report& report) {
       "profile_diagonal_down_mm,profile_mean_mm,failure\n";
   for (const ScanReport& scan : report.scans) {
     if (!scan.failure.empty()) {
-      out += fmt::format("{},,,,,,,,,,,,,,,,,,,,,,,,,,,,{}\n", csv_quoted(scan.name), csv_quoted(scan.failure));
+      out +=
+          fmt::format("{},,,,,,,,,,,,,,,,,,,,,,,,,,,,{}\n", csv_quoted(scan.name), csv_quoted(scan.failure));
       continue;
     }
     for (const Variant& v : scan.variants) {
-      out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},", csv_quoted(scan.name), to_string(scan.units),
-                         to_string(v.method), csv_quoted(v.name), v.bits > 0 ? fmt::format("{}", v.bits) : "",
-                         v.budget > 0 ? fmt::format("{}", v.budget) : "",
-                         v.ratio > 0 ? fmt::format("{:g}", v.ratio) : "", v.lossless ? 1 : 0, v.bytes,
-                         csv_number(v.ratio_to_ply), csv_number(v.encode_ms), csv_number(v.decode_ms), v.vertices,
-                         v.triangles);
+      out += fmt::format(
+          "{},{},{},{},{},{},{},{},{},{},{},{},{},{},", csv_quoted(scan.name), to_string(scan.units),
+          to_string(v.method), csv_quoted(v.name), v.bits > 0 ? fmt::format("{}", v.bits) : "",
+          v.budget > 0 ? fmt::format("{}", v.budget) : "", v.ratio > 0 ? fmt::format("{:g}", v.ratio) : "",
+          v.lossless ? 1 : 0, v.bytes, csv_number(v.ratio_to_ply), csv_number(v.encode_ms),
+          csv_number(v.decode_ms), v.vertices, v.triangles);
       if (v.fidelity) {
         const MeshFidelity& f = *v.fidelity;
         const metrics::DistanceStats& m = f.coverage.distance;
         out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},\n", csv_number(f.coverage.share),
                            csv_number(m.mean), csv_number(m.rms), csv_number(m.p95), csv_number(m.max),
                            csv_number(f.to_scan.mean), csv_number(f.to_scan.rms), csv_number(f.to_scan.p95),
-                           csv_number(f.to_scan.max), csv_number(f.profile_error[0]), csv_number(f.profile_error[1]),
-                           csv_number(f.profile_error[2]), csv_number(f.profile_error[3]),
-                           csv_number(f.mean_profile_error));
+                           csv_number(f.to_scan.max), csv_number(f.profile_error[0]),
+                           csv_number(f.profile_error[1]), csv_number(f.profile_error[2]),
+                           csv_number(f.profile_error[3]), csv_number(f.mean_profile_error));
       } else {
         out += std::string(14, ',') + csv_quoted(v.failure) + "\n";
       }
@@ -302,7 +312,8 @@ std::string report_json(const Report& report) {
   using nlohmann::json;
   const auto stats = [](const metrics::DistanceStats& d) {
     const auto n = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
-    return json{{"mean", n(d.mean)}, {"rms", n(d.rms)}, {"p95", n(d.p95)}, {"max", n(d.max)}, {"samples", d.samples}};
+    return json{
+        {"mean", n(d.mean)}, {"rms", n(d.rms)}, {"p95", n(d.p95)}, {"max", n(d.max)}, {"samples", d.samples}};
   };
   const CompareOptions& o = report.options;
   json doc{{"format", "pdeface-compare"},
@@ -340,16 +351,11 @@ std::string report_json(const Report& report) {
     for (const HeatMap& h : scan.heat_maps)
       s["heat_maps"].push_back({{"variant", h.variant}, {"file", h.file}, {"scale_mm", h.scale_mm}});
     for (const Variant& v : scan.variants) {
-      json j{{"method", to_string(v.method)},
-             {"name", v.name},
-             {"extension", v.extension},
-             {"bytes", v.bytes},
-             {"ratio_to_ply", v.ratio_to_ply},
-             {"encode_ms", v.encode_ms},
-             {"decode_ms", v.decode_ms},
-             {"vertices", v.vertices},
-             {"triangles", v.triangles},
-             {"lossless", v.lossless}};
+      json j{{"method", to_string(v.method)},  {"name", v.name},
+             {"extension", v.extension},       {"bytes", v.bytes},
+             {"ratio_to_ply", v.ratio_to_ply}, {"encode_ms", v.encode_ms},
+             {"decode_ms", v.decode_ms},       {"vertices", v.vertices},
+             {"triangles", v.triangles},       {"lossless", v.lossless}};
       if (v.bits > 0) j["bits"] = v.bits;
       if (v.budget > 0) j["budget"] = v.budget;
       if (v.ratio > 0) j["ratio"] = v.ratio;

@@ -105,8 +105,8 @@ Mesh simplify(const Mesh& geometry, std::size_t target, bool lock_border) {
   std::vector<float> positions;
   positions.reserve(3 * geometry.positions.size());
   for (const Vec3& p : geometry.positions)
-    positions.insert(positions.end(), {static_cast<float>(p.x()), static_cast<float>(p.y()),
-                                       static_cast<float>(p.z())});
+    positions.insert(positions.end(),
+                     {static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z())});
   std::vector<unsigned> indices;
   indices.reserve(3 * geometry.triangles.size());
   for (const Triangle& t : geometry.triangles)
@@ -191,10 +191,11 @@ Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget, c
     }
   }
   if (!best && under > 0)
-    return make_error(ErrorCode::InvalidArgument,
-                      fmt::format("nothing to decimate: the whole scan takes at most {} bytes with {} bits, more "
-                                  "than {:g} % under the budget (see the Draco rows)",
-                                  under, fmt::join(options.decimate_bits, ", "), 100.0 * options.budget_slack));
+    return make_error(
+        ErrorCode::InvalidArgument,
+        fmt::format("nothing to decimate: the whole scan takes at most {} bytes with {} bits, more "
+                    "than {:g} % under the budget (see the Draco rows)",
+                    under, fmt::join(options.decimate_bits, ", "), 100.0 * options.budget_slack));
   if (!best)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("no decimated mesh fits in {} bytes with {} bits", budget,

@@ -83,7 +83,8 @@ std::string front_view_image(const Mesh& canonical, const FrontViewBox& box, con
       }
       const Eigen::Vector3f rgb = colour(Vec3(map.x_of(c), map.y_of(r), map.z(r, c)));
       for (int k = 0; k < 3; ++k)
-        pixels[at + k] = static_cast<unsigned char>(std::clamp(255.0 * rgb[k] * (0.35 + 0.65 * shade), 0.0, 255.0));
+        pixels[at + k] =
+            static_cast<unsigned char>(std::clamp(255.0 * rgb[k] * (0.35 + 0.65 * shade), 0.0, 255.0));
     }
   return fmt::format("<image x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" "
                      "href=\"data:image/png;base64,{}\"/>\n",

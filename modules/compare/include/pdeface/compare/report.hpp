@@ -46,7 +46,8 @@ struct CompareOptions {
   FidelityOptions fidelity;
   //! Heat maps: the error (mesh → scan, mm) coloured from 0 (blue) to this (red) on the GLBs written.
   double heat_max_mm = 1.0;
-  double heat_ratio = 0.10; //!< the PDE variant shown as a heat map (lossy), with decimate + Draco at its size
+  double heat_ratio =
+      0.10; //!< the PDE variant shown as a heat map (lossy), with decimate + Draco at its size
   int heat_draco_bits = 11; //!< and Draco at these bits
   bool keep_bytes = false;  //!< keep every variant's encoded bytes (`Variant::encoded`) to write them
   //! Threads per scan (0: the machine's cores); `compare_scans` shares the cores between the scans.
@@ -56,9 +57,9 @@ struct CompareOptions {
 //! One encoding of one scan, measured on its decoded bytes.
 struct Variant {
   Method method = Method::Raw;
-  std::string name;      //!< "ply", "ply.gz", "draco 11 bits", "decimate+draco 2048 B", "pde 10 % lossy"
-  std::string extension; //!< of its file: ".ply", ".ply.gz", ".drc", ".pdef"
-  int bits = 0;          //!< Draco and decimate + Draco: position quantisation bits
+  std::string name;          //!< "ply", "ply.gz", "draco 11 bits", "decimate+draco 2048 B", "pde 10 % lossy"
+  std::string extension;     //!< of its file: ".ply", ".ply.gz", ".drc", ".pdef"
+  int bits = 0;              //!< Draco and decimate + Draco: position quantisation bits
   std::size_t budget = 0;    //!< decimate + Draco: the byte budget
   double ratio = 0.0;        //!< PDE: the sampling ratio
   bool lossless = true;      //!< raw (float32) and lossless PDE
@@ -76,9 +77,9 @@ struct Variant {
 //! A heat-map GLB of one variant: its decoded mesh in the canonical frame (mm), every vertex coloured by
 //! its distance to the scan (0 blue … `scale_mm` red; grey outside the face mask, where nothing is judged).
 struct HeatMap {
-  std::string variant; //!< `Variant::name`
-  std::string file;    //!< file name in the report folder
-  std::string glb;     //!< the bytes
+  std::string variant;   //!< `Variant::name`
+  std::string file;      //!< file name in the report folder
+  std::string glb;       //!< the bytes
   std::string front_svg; //!< an SVG `<image>` of it from the front, for the page (mm user units)
   double scale_mm = 1.0;
 };
@@ -129,8 +130,8 @@ struct Report {
 
 //! The inputs as scan files: each folder replaced by the mesh files in it (by extension), sorted.
 //! Errors: `Io` for a path that is neither a file nor a folder.
-[[nodiscard]] Result<std::vector<std::filesystem::path>> expand_inputs(
-    std::span<const std::filesystem::path> inputs);
+[[nodiscard]] Result<std::vector<std::filesystem::path>>
+expand_inputs(std::span<const std::filesystem::path> inputs);
 
 //! Reads and compares every scan, several at a time across the cores; a scan that cannot be read or has
 //! no face is a `ScanReport` with `failure`, and the others go on.
