@@ -57,9 +57,10 @@ std::string milliseconds(double ms) {
          : ms < 10          ? fmt::format("{:.1f}", ms)
                             : fmt::format("{:.0f}", ms);
 }
-std::string plus_minus(const Stat& s, const std::function<std::string(double)>& format) {
+std::string plus_minus(const Stat& s, const std::function<std::string(double)>& format,
+                       const std::function<std::string(double)>& format_sd = {}) {
   if (s.n == 0) return "–";
-  return s.n == 1 ? format(s.mean) : format(s.mean) + " ± " + format(s.sd);
+  return s.n == 1 ? format(s.mean) : format(s.mean) + " ± " + (format_sd ? format_sd : format)(s.sd);
 }
 
 std::string cell_escape(std::string text) {
@@ -156,14 +157,14 @@ Table summary_table(const Report& report) {
           .right = {false, true, true, true, true, true, true, true, true, true, true, true, true}};
   const auto f3 = [](double v) { return number(v); };
   for (const Aggregate& a : aggregate(report))
-    t.rows.push_back({a.name, fmt::format("{}", a.bytes.n), plus_minus(a.bytes, bytes_text),
-                      plus_minus(a.ratio_to_ply, ratio_text),
-                      plus_minus(a.triangles, [](double v) { return fmt::format("{:.0f}", v); }),
-                      plus_minus(a.coverage, [](double v) { return number(v, 1); }),
-                      plus_minus(a.mask_mean, f3), plus_minus(a.to_scan_mean, f3),
-                      plus_minus(a.to_scan_p95, f3), plus_minus(a.to_scan_max, f3),
-                      plus_minus(a.profile_error, f3), plus_minus(a.encode_ms, milliseconds),
-                      plus_minus(a.decode_ms, milliseconds)});
+    t.rows.push_back(
+        {a.name, fmt::format("{}", a.bytes.n), plus_minus(a.bytes, bytes_text),
+         plus_minus(a.ratio_to_ply, ratio_text, [](double v) { return fmt::format("{:.2g}", v); }),
+         plus_minus(a.triangles, [](double v) { return fmt::format("{:.0f}", v); }),
+         plus_minus(a.coverage, [](double v) { return number(v, 1); }), plus_minus(a.mask_mean, f3),
+         plus_minus(a.to_scan_mean, f3), plus_minus(a.to_scan_p95, f3), plus_minus(a.to_scan_max, f3),
+         plus_minus(a.profile_error, f3), plus_minus(a.encode_ms, milliseconds),
+         plus_minus(a.decode_ms, milliseconds)});
   return t;
 }
 
