@@ -47,9 +47,9 @@ HeatMap heat_map(const Mesh& mesh, const FaceYardstick& yardstick, double scale_
   HeatMap out{.variant = variant, .file = file, .scale_mm = scale_mm};
   Result<std::string> glb = formats::encode_mesh(coloured, file, {.format = formats::Format::Glb});
   if (glb) out.glb = *std::move(glb);
-  const svg::FrontViewBox box{-1.25 * mask.half_width, 1.25 * mask.half_width,
-                              mask.centre_y - 1.15 * mask.half_height,
-                              mask.centre_y + 1.15 * mask.half_height, 0.4};
+  const svg::FrontViewBox box{
+      -1.25 * mask.half_width, 1.25 * mask.half_width, mask.centre_y - 1.15 * mask.half_height,
+      mask.centre_y + 1.15 * mask.half_height, 0.6}; // about a pixel of the page, which shows 1.5 px per mm
   out.front_svg = fmt::format(
       "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"{:.1f} {:.1f} {:.1f} {:.1f}\" width=\"{:.0f}\" "
       "height=\"{:.0f}\">\n{}</svg>\n",

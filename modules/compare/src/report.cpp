@@ -200,7 +200,9 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
         if (t.keep_mesh) heat_label = budgets.back().second;
       }
   std::vector<Task> decimated;
-  for (const auto& [budget, label] : budgets)
+  for (const auto& entry : budgets) {
+    const std::size_t budget = entry.first;
+    const std::string& label = entry.second;
     decimated.push_back({.variant = {.method = Method::DecimateDraco,
                                      .name = label,
                                      .extension = ".drc",
@@ -215,6 +217,7 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
                            return std::move(d->encoded);
                          },
                          .keep_mesh = label == heat_label});
+  }
   run(decimated);
 
   // The rows, in a reading order: raw, gzip, Draco, decimate + Draco, PDE.

@@ -63,7 +63,7 @@ std::string plus_minus(const Stat& s, const std::function<std::string(double)>& 
   return s.n == 1 ? format(s.mean) : format(s.mean) + " ± " + (format_sd ? format_sd : format)(s.sd);
 }
 
-std::string cell_escape(std::string text) {
+std::string cell_escape(const std::string& text) {
   std::string out;
   for (char c : text)
     out += c == '|' ? std::string("\\|") : std::string(1, c);
