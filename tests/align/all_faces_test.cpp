@@ -7,6 +7,9 @@
 #include "pdeface/align/detect.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/obj/obj.hpp"
+
+#include <fmt/format.h>
 
 #include "pdeface_test.hpp"
 
@@ -222,6 +225,33 @@ TEST(SharedFacesPose, XUpAndUpsideDown) {
     EXPECT_LT((*found->landmarks[Landmark::NoseTip] - r * *reference->landmarks[Landmark::NoseTip]).norm(),
               1.0);
   }
+}
+
+// A bust turned so that its pedestal's corner, symmetric and pointed, passes the quick test for a face
+// (a "nose", landmarks near the average face's) at the scale the bounding box suggests: the search must go
+// on to the bust's own face, not give up when the corner fails the full check (it has no eye sockets).
+TEST(SharedFacesPose, APedestalCornerDoesNotHideTheFace) {
+  PDEFACE_FACE_OR_SKIP(path, "bust_man_wreath.obj");
+  const Mesh bust = load(path);
+  const Eigen::Matrix3d r{
+      {-0.7795631764608477, 0.4252354807450397, 0.45984349492170484},
+      {-0.05259256718159325, 0.6871583206664327, -0.7246015899900701},
+      {-0.6241115892078296, -0.5890570670609282, -0.5133190976011455}};
+  const Vec3 t(404.8048268374896, 371.44065598547405, -300.0811499569935);
+  // Turned and moved, written as OBJ text with 9 digits and read back, as a user's file would be.
+  std::string text;
+  for (const Vec3& p : bust.positions) {
+    const Vec3 q = r * p + t;
+    text += fmt::format("v {:.9g} {:.9g} {:.9g}\n", q.x(), q.y(), q.z());
+  }
+  for (const Triangle& f : bust.triangles)
+    text += fmt::format("f {} {} {}\n", f[0] + 1, f[1] + 1, f[2] + 1);
+  const Result<Mesh> scan = obj::read(text, "turned bust");
+  ASSERT_TRUE(scan.ok()) << scan.error().to_string();
+  auto found = detect_landmarks(*scan);
+  ASSERT_TRUE(found.ok()) << found.error().to_string();
+  expect_a_symmetric_face(*found, "the turned bust");
+  expect_the_tip_in_front(*scan, *found, "the turned bust");
 }
 
 // The same face at 3k and 120k vertices: decimated by vertex clustering, subdivided 1:4.

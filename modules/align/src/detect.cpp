@@ -668,117 +668,143 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
              (fixed_scale || snap_units(h.verified.mm_per_unit) == snap_units(first));
     });
   };
+  // One verified hypothesis refined into landmarks and a frame, and judged on every cue.
+  const auto finish = [&](const Hypothesis& best) -> Result<Detection> {
+    // The scale: stated by the file, else the one the landmarks give, snapped to a standard unit when
+    // close to one. The landmarks are searched in face millimetres whatever the units (the windows fit the
+    // face, be it larger than life or a child's): at the scale the landmarks give, again until it stays.
+    double face_mm = best.verified.mm_per_unit;
+    if (const std::optional<Shape> shape = shape_of(best.verified.found)) face_mm = shape->mm_per_unit;
+    Candidate chosen = best.candidate;
+    if (std::abs(face_mm / best.verified.mm_per_unit - 1.0) > 0.02)
+      if (const std::optional<Candidate> again =
+              around_the_nose(scene, chosen.plane, chosen.nose, 1.0 / face_mm))
+        chosen = *again;
+    std::optional<Fitted> fitted;
+    // From the frame the refined symmetry plane and nose give (it fixes the roll and yaw better than
+    // landmarks searched on a coarse map), the way up verification found.
+    const Vec3 up = best.verified.frame.rotation.row(1).dot(chosen.nose.up) >= 0.0 ? chosen.nose.up
+                                                                                   : Vec3(-chosen.nose.up);
+    Similarity start = nose_frame(chosen.nose, up, face_mm);
+    for (int pass = 0; pass < 3; ++pass) {
+      fitted = fit_landmarks(scene, start, face_mm, Units::Unknown);
+      if (!fitted) break;
+      const std::optional<Shape> shape = shape_of(fitted->found);
+      // Until the scale moves less than 0.1 %: a fixed point, whatever the pose the search started from.
+      if (!shape || std::abs(shape->mm_per_unit / face_mm - 1.0) < 1e-3) break;
+      start = similarity(fitted->frame);
+      face_mm = shape->mm_per_unit;
+    }
+    if (!fitted)
+      return make_error(
+          ErrorCode::NoFace,
+          fmt::format("no face found: the nose-like point at ({:.4g}, {:.4g}, {:.4g}) has too few "
+                      "eye or mouth corners around it to fix a face frame",
+                      chosen.nose.tip.x(), chosen.nose.tip.y(), chosen.nose.tip.z()),
+          source);
+
+    // The frame at the scan's scale: its units' when it states them or the face's scale is close to a
+    // standard unit's, else the face's.
+    const Units units = fixed_scale ? scan.units : snap_units(face_mm);
+    const double mm = units == Units::Unknown ? face_mm : millimetres_per(units);
+    Result<FaceFrame> frame = frame_from_landmarks(fitted->found, mm, units);
+    if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, source);
+
+    Detection out;
+    out.landmarks = fitted->found;
+    out.landmarks.units = units;
+    out.frame = *frame;
+    out.symmetry = chosen.plane;
+    // The symmetry and the nose measured again around the nose tip found, in face millimetres.
+    const double rescale = face_mm / best.verified.mm_per_unit;
+    out.symmetry_rms_mm = chosen.rms_mm * rescale;
+    out.nose_prominence_mm = chosen.nose.prominence * rescale;
+    Nose final_nose = chosen.nose;
+    final_nose.tip = *fitted->found[Landmark::NoseTip];
+    final_nose.forward = out.frame.axis_in_scan(2); // looking at the face from the front
+    if (const std::optional<Candidate> around =
+            around_the_nose(scene, chosen.plane, final_nose, 1.0 / face_mm)) {
+      out.symmetry = around->plane;
+      out.symmetry_rms_mm = around->rms_mm;
+      out.nose_prominence_mm = around->nose.prominence;
+    }
+    out.fit_rms_mm = fitted->shape_rms;
+    {
+      Similarity seen = similarity(out.frame);
+      seen.translation *= face_mm / seen.scale;
+      seen.scale = face_mm;
+      out.eye_hollow_mm = detail::eye_hollowness(scene.mesh.positions, scene.mesh.triangles, scene.spacing,
+                                                 seen, out.landmarks)
+                              .value_or(0.0);
+    }
+    const Cues c = cues(out);
+    out.confidence = c.confidence();
+    if (out.confidence < options.min_confidence)
+      return make_error(
+          ErrorCode::NoFace,
+          fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
+                      "landmark fit {:.1f} mm, {} of {} landmarks, eye hollows {:.1f} mm)",
+                      out.confidence, options.min_confidence, out.symmetry_rms_mm, out.nose_prominence_mm,
+                      out.fit_rms_mm, out.landmarks.count(), kLandmarkCount, out.eye_hollow_mm),
+          source);
+    return out;
+  };
+  // The most face-like few hypotheses so far (distinct nose tips or scales), verified thoroughly and
+  // finished; the first that is confidently a face is the answer. Those tried are not tried again.
+  std::vector<Hypothesis> tried;
+  std::optional<Error> first_failure;
+  const auto same = [](const Hypothesis& h, const Hypothesis& q) {
+    const double mm = q.verified.mm_per_unit;
+    return (h.candidate.nose.tip - q.candidate.nose.tip).norm() < 5.0 / mm &&
+           std::abs(std::log(h.verified.mm_per_unit / mm)) < 0.15;
+  };
+  const auto conclude = [&]() -> std::optional<Detection> {
+    std::ranges::sort(quick, std::greater{}, &Hypothesis::rank);
+    std::vector<Hypothesis> hypotheses;
+    for (const Hypothesis& q : quick) {
+      if (hypotheses.size() == 3) break;
+      if (std::ranges::any_of(hypotheses, [&](const Hypothesis& h) { return same(h, q); }) ||
+          std::ranges::any_of(tried, [&](const Hypothesis& h) { return same(h, q); }))
+        continue;
+      tried.push_back(q);
+      const double mm = q.verified.mm_per_unit;
+      const std::optional<Candidate> c =
+          around_the_nose(scene, q.candidate.plane, q.candidate.nose, 1.0 / mm);
+      if (!c) continue;
+      Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 1.0, &q.verified.frame)};
+      h.rank = rank(*c, h.verified);
+      hypotheses.push_back(std::move(h));
+    }
+    std::ranges::sort(hypotheses, std::greater{}, &Hypothesis::rank);
+    for (const Hypothesis& h : hypotheses) {
+      Result<Detection> found = finish(h);
+      if (found) return std::move(*found);
+      if (!first_failure) first_failure = std::move(found).error();
+    }
+    return std::nullopt;
+  };
+  // Stage by stage, stopping at the first face that passes every cue: a pedestal's corner can pass the
+  // quick test (symmetric, a "nose", landmarks near the average face's) but has no eye sockets, and must
+  // not end the search before the bust's face above it is tried.
   try_scale(first, true, false);
-  if (!found_a_face()) {
-    find_locals();
-    try_scale(first, false, true);
-  }
-  if (!fixed_scale && !found_a_face())
+  if (found_a_face())
+    if (std::optional<Detection> d = conclude()) return std::move(*d);
+  find_locals();
+  try_scale(first, false, true);
+  if (found_a_face())
+    if (std::optional<Detection> d = conclude()) return std::move(*d);
+  if (!fixed_scale)
     for (const double mm : scales)
       try_scale(mm, true, true);
-  std::ranges::sort(quick, std::greater{}, &Hypothesis::rank);
-  std::vector<Hypothesis> hypotheses;
-  for (const Hypothesis& q : quick) {
-    if (hypotheses.size() == 3) break;
-    const double mm = q.verified.mm_per_unit;
-    if (std::ranges::any_of(hypotheses, [&](const Hypothesis& h) {
-          return (h.candidate.nose.tip - q.candidate.nose.tip).norm() < 5.0 / mm &&
-                 std::abs(std::log(h.verified.mm_per_unit / mm)) < 0.15;
-        }))
-      continue;
-    const std::optional<Candidate> c = around_the_nose(scene, q.candidate.plane, q.candidate.nose, 1.0 / mm);
-    if (!c) continue;
-    Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 1.0, &q.verified.frame)};
-    h.rank = rank(*c, h.verified);
-    hypotheses.push_back(std::move(h));
-  }
-  if (hypotheses.empty())
-    return make_error(
-        ErrorCode::NoFace,
-        fmt::format("no face found: no nose-like point on any symmetry plane (most prominent {:.1f} mm, "
-                    "a nose stands at least {:.0f} mm out of its profile)",
-                    best_prominence, kMinNoseProminence),
-        source);
-  const Hypothesis& best = *std::ranges::max_element(hypotheses, {}, &Hypothesis::rank);
-
-  // The scale: stated by the file, else the one the landmarks give, snapped to a standard unit when
-  // close to one. The landmarks are searched in face millimetres whatever the units (the windows fit the
-  // face, be it larger than life or a child's): at the scale the landmarks give, again until it stays.
-  double face_mm = best.verified.mm_per_unit;
-  if (const std::optional<Shape> shape = shape_of(best.verified.found)) face_mm = shape->mm_per_unit;
-  Candidate chosen = best.candidate;
-  if (std::abs(face_mm / best.verified.mm_per_unit - 1.0) > 0.02)
-    if (const std::optional<Candidate> again =
-            around_the_nose(scene, chosen.plane, chosen.nose, 1.0 / face_mm))
-      chosen = *again;
-  std::optional<Fitted> fitted;
-  // From the frame the refined symmetry plane and nose give (it fixes the roll and yaw better than
-  // landmarks searched on a coarse map), the way up verification found.
-  const Vec3 up =
-      best.verified.frame.rotation.row(1).dot(chosen.nose.up) >= 0.0 ? chosen.nose.up : Vec3(-chosen.nose.up);
-  Similarity start = nose_frame(chosen.nose, up, face_mm);
-  for (int pass = 0; pass < 3; ++pass) {
-    fitted = fit_landmarks(scene, start, face_mm, Units::Unknown);
-    if (!fitted) break;
-    const std::optional<Shape> shape = shape_of(fitted->found);
-    // Until the scale moves less than 0.1 %: a fixed point, whatever the pose the search started from.
-    if (!shape || std::abs(shape->mm_per_unit / face_mm - 1.0) < 1e-3) break;
-    start = similarity(fitted->frame);
-    face_mm = shape->mm_per_unit;
-  }
-  if (!fitted)
-    return make_error(
-        ErrorCode::NoFace,
-        fmt::format("no face found: the nose-like point at ({:.4g}, {:.4g}, {:.4g}) has too few "
-                    "eye or mouth corners around it to fix a face frame",
-                    chosen.nose.tip.x(), chosen.nose.tip.y(), chosen.nose.tip.z()),
-        source);
-
-  // The frame at the scan's scale: its units' when it states them or the face's scale is close to a
-  // standard unit's, else the face's.
-  const Units units = fixed_scale ? scan.units : snap_units(face_mm);
-  const double mm = units == Units::Unknown ? face_mm : millimetres_per(units);
-  Result<FaceFrame> frame = frame_from_landmarks(fitted->found, mm, units);
-  if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, source);
-
-  Detection out;
-  out.landmarks = fitted->found;
-  out.landmarks.units = units;
-  out.frame = *frame;
-  out.symmetry = chosen.plane;
-  // The symmetry and the nose measured again around the nose tip found, in face millimetres.
-  const double rescale = face_mm / best.verified.mm_per_unit;
-  out.symmetry_rms_mm = chosen.rms_mm * rescale;
-  out.nose_prominence_mm = chosen.nose.prominence * rescale;
-  Nose final_nose = chosen.nose;
-  final_nose.tip = *fitted->found[Landmark::NoseTip];
-  final_nose.forward = out.frame.axis_in_scan(2); // looking at the face from the front
-  if (const std::optional<Candidate> around =
-          around_the_nose(scene, chosen.plane, final_nose, 1.0 / face_mm)) {
-    out.symmetry = around->plane;
-    out.symmetry_rms_mm = around->rms_mm;
-    out.nose_prominence_mm = around->nose.prominence;
-  }
-  out.fit_rms_mm = fitted->shape_rms;
-  {
-    Similarity seen = similarity(out.frame);
-    seen.translation *= face_mm / seen.scale;
-    seen.scale = face_mm;
-    out.eye_hollow_mm =
-        detail::eye_hollowness(scene.mesh.positions, scene.mesh.triangles, scene.spacing, seen, out.landmarks)
-            .value_or(0.0);
-  }
-  const Cues c = cues(out);
-  out.confidence = c.confidence();
-  if (out.confidence < options.min_confidence)
-    return make_error(
-        ErrorCode::NoFace,
-        fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
-                    "landmark fit {:.1f} mm, {} of {} landmarks, eye hollows {:.1f} mm)",
-                    out.confidence, options.min_confidence, out.symmetry_rms_mm, out.nose_prominence_mm,
-                    out.fit_rms_mm, out.landmarks.count(), kLandmarkCount, out.eye_hollow_mm),
-        source);
-  return out;
+  // Last, every remaining hypothesis, the most face-like first, three at a time.
+  for (std::size_t round = 0; round < 3; ++round)
+    if (std::optional<Detection> d = conclude()) return std::move(*d);
+  if (first_failure) return *std::move(first_failure);
+  return make_error(ErrorCode::NoFace,
+                    fmt::format("no face found: no nose-like point on any symmetry plane (most prominent "
+                                "{:.1f} mm, a nose stands at least {:.0f} mm out of its profile)",
+                                best_prominence, kMinNoseProminence),
+                    source);
 }
 
 Result<Alignment> align_scan(const Mesh& scan, std::optional<Landmarks> given, std::string_view source,

@@ -48,30 +48,30 @@ std::vector<metrics::Polyline> pieces(const std::vector<Vec3>& points, const Vec
   return out;
 }
 
-// The sections of the scan at every millimetre across the mask: what the face shows from the front.
+// The scan seen from the front: its sections every `step` mm across |x| <= half_width, each the front-most
+// surface along the height.
 struct FrontView {
   double x0 = 0.0, step = 1.0;
   std::vector<slice::Section> columns;
-  [[nodiscard]] std::optional<double> front_z(double x, double y) const {
+  [[nodiscard]] double x_of(std::size_t column) const { return x0 + static_cast<double>(column) * step; }
+  //! The front-most surface point at (x, y), if the scan has surface there.
+  [[nodiscard]] std::optional<Vec3> front(double x, double y) const {
     const double k = std::round((x - x0) / step);
     if (k < 0 || k >= static_cast<double>(columns.size())) return std::nullopt;
-    const auto p = slice::section_at(columns[static_cast<std::size_t>(k)], {}, y);
-    return p ? std::optional<double>(p->z()) : std::nullopt;
+    return slice::section_at(columns[static_cast<std::size_t>(k)], {}, y);
   }
   //! Behind the front-most surface by more than `tolerance` (the inside of the mouth, of a nostril).
   [[nodiscard]] bool hidden(const Vec3& p, double tolerance) const {
-    const std::optional<double> front = front_z(p.x(), p.y());
-    return front && p.z() < *front - tolerance;
+    const std::optional<Vec3> f = front(p.x(), p.y());
+    return f && p.z() < f->z() - tolerance;
   }
 };
 
-// Sections every millimetre over |x| <= half_width.
-FrontView front_view(const Mesh& scan, double half_width) {
-  constexpr double step = 1.0;
+FrontView front_view(const Mesh& scan, double half_width, double step) {
   FrontView view{-half_width, step, {}};
   std::vector<double> offsets;
-  for (double x = view.x0; x <= half_width + 0.5 * step; x += step)
-    offsets.push_back(x);
+  for (std::size_t k = 0; view.x_of(k) <= half_width + 0.5 * step; ++k)
+    offsets.push_back(view.x_of(k));
   view.columns = slice::sections(scan, Vec3::UnitX(), offsets, {});
   return view;
 }
@@ -88,12 +88,20 @@ FaceRegion face_region(const slice::ProfileSet& profiles, double depth_margin_mm
 
 namespace {
 
-// The scan's front-most samples inside the mask: what the coverage measures.
-std::vector<Vec3> mask_samples(const Mesh& scan, const slice::FaceMask& mask, const FrontView& view,
-                               const FidelityOptions& options) {
+// The scan's face as the coverage measures it: the mask is a region of the front view, so its share is
+// measured per unit of that view's area, at the scan's front-most surface on a grid over the mask. Surface
+// that turns away from the viewer (the cheeks' sides, under the chin) counts for the area it shows, not
+// for its own area, and what the front hides (the inside of the mouth and nostrils) is not the face.
+std::vector<Vec3> mask_samples(const slice::FaceMask& mask, const FrontView& view) {
   std::vector<Vec3> out;
-  for (const Vec3& p : metrics::sample_surface(scan, options.sample_spacing_mm))
-    if (mask.contains(p) && !view.hidden(p, options.front_tolerance_mm)) out.push_back(p);
+  const double step = view.step;
+  for (std::size_t k = 0; k < view.columns.size(); ++k) {
+    const std::optional<std::array<double, 2>> h = mask.heights_at(view.x_of(k));
+    if (!h) continue;
+    for (double y = std::ceil((*h)[0] / step) * step; y <= (*h)[1]; y += step)
+      if (const std::optional<Vec3> p = slice::section_at(view.columns[k], {}, y); p && mask.contains(*p))
+        out.push_back(*p);
+  }
   return out;
 }
 
@@ -102,7 +110,7 @@ Result<Coverage> coverage_from(std::span<const Vec3> samples, const Mesh& recons
   if (reconstruction.positions.empty())
     return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
   if (samples.empty())
-    return make_error(ErrorCode::InvalidArgument, "coverage: no sample of the scan lies in the face mask");
+    return make_error(ErrorCode::InvalidArgument, "coverage: the scan has no surface in the face mask");
   const metrics::SurfaceDistance to_reconstruction(reconstruction);
   std::vector<double> distances;
   distances.reserve(samples.size());
@@ -148,8 +156,8 @@ std::array<double, 4> evaluation_errors(std::span<const slice::EvaluationProfile
 Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask, const Mesh& reconstruction,
                                   const FidelityOptions& options) {
   if (scan.positions.empty()) return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
-  const FrontView view = front_view(scan, mask.half_width);
-  return coverage_from(mask_samples(scan, mask, view, options), reconstruction, options);
+  const FrontView view = front_view(scan, mask.half_width, options.sample_spacing_mm);
+  return coverage_from(mask_samples(mask, view), reconstruction, options);
 }
 
 Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& profiles,
@@ -190,7 +198,8 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
   // The scan's side counts what a viewer sees from the front: the inside of the mouth and the nostrils,
   // which no front-most profile holds, are not the face.
   const FaceRegion region = face_region(profiles, options.depth_margin_mm);
-  const FrontView view = front_view(scan, std::max(profiles.mask.half_width, profiles.border_mm) + 1.0);
+  const FrontView view = front_view(scan, std::max(profiles.mask.half_width, profiles.border_mm) + 1.0,
+                                    options.sample_spacing_mm);
   Result<metrics::TwoSidedDistance> distance = metrics::surface_distance(
       scan, reconstruction,
       {.spacing = options.sample_spacing_mm,
@@ -201,8 +210,7 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
            [&](const Vec3& p) { return region.contains(p) && !region.curves.filled_at(p.x(), p.y()); }});
   if (!distance) return std::move(distance).error();
   f.surface = *distance;
-  Result<Coverage> coverage =
-      coverage_from(mask_samples(scan, profiles.mask, view, options), reconstruction, options);
+  Result<Coverage> coverage = coverage_from(mask_samples(profiles.mask, view), reconstruction, options);
   if (!coverage) return std::move(coverage).error();
   f.coverage = *coverage;
   return f;
@@ -211,8 +219,8 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
 struct FaceYardstick::State {
   State(const Mesh& canonical, const slice::ProfileSet& profiles, const FidelityOptions& fidelity)
       : scan(canonical), mask(profiles.mask), evaluation(profiles.evaluation), options(fidelity),
-        view(front_view(scan, mask.half_width + 1.0)), samples(mask_samples(scan, mask, view, options)),
-        to_scan(scan) {}
+        view(front_view(scan, mask.half_width + 1.0, options.sample_spacing_mm)),
+        samples(mask_samples(mask, view)), to_scan(scan) {}
   Mesh scan;
   slice::FaceMask mask;
   std::vector<slice::EvaluationProfile> evaluation;

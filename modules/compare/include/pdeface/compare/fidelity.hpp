@@ -53,9 +53,11 @@ struct FaceRegion {
 };
 [[nodiscard]] FaceRegion face_region(const slice::ProfileSet& profiles, double depth_margin_mm);
 
-//! The share of `scan`'s face (its front-most surface inside `mask`) within `options.covered_within_mm` of
-//! `reconstruction`, and the distances (both canonical, mm). Errors: `InvalidArgument` when no sample of
-//! the scan lies in the mask.
+//! The share of `scan`'s face within `options.covered_within_mm` of `reconstruction`, and the distances
+//! (both canonical, mm). The face is the scan's front-most surface seen through `mask`, a point every
+//! `options.sample_spacing_mm` across and along it: the share is of the mask's front-view area, so surface
+//! turning away from the viewer counts for the area it shows. Errors: `InvalidArgument` when the scan has
+//! no surface in the mask.
 [[nodiscard]] Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask,
                                                 const Mesh& reconstruction,
                                                 const FidelityOptions& options = {});
