@@ -249,7 +249,7 @@ Result<MeshFidelity> FaceYardstick::measure(const Mesh& mesh) const {
   MeshFidelity f{.coverage = *coverage};
   std::vector<double> distances;
   for (const Vec3& p : metrics::sample_surface(mesh, s.options.sample_spacing_mm))
-    if (s.mask.contains(p) && s.view.front_z(p.x(), p.y())) distances.push_back(s.to_scan.distance(p));
+    if (s.mask.contains(p) && s.view.front(p.x(), p.y())) distances.push_back(s.to_scan.distance(p));
   f.to_scan = metrics::statistics(std::move(distances));
   if (f.to_scan.samples == 0) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
