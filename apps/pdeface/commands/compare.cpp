@@ -179,6 +179,8 @@ void compare_command(CLI::App& app, int& status) {
   cmd->add_option("--heat-max", args->options.heat_max_mm, "Heat maps: the error shown red, mm")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  cmd->add_flag("--crop-face", args->options.crop_face,
+                "Compress only the face (no ears, neck, shoulders or pedestal), as a .pdef holds it");
   cmd->add_flag("--files", args->files, "Also write every variant's encoded file (DIR/files/SCAN/)");
   cmd->add_option("--threads", args->options.threads,
                   "Threads per scan (default: shared out over the cores)");

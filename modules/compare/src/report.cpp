@@ -2,6 +2,7 @@
 
 #include "pdeface/compare/report.hpp"
 
+#include "pdeface/align/crop.hpp"
 #include "pdeface/align/frame.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/sample_face.hpp"
@@ -100,10 +101,22 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   const FaceYardstick& yardstick = *made;
   tick("aligned");
 
-  // Every variant carries the geometry only: positions and triangles (a `.pdef` holds no colours either).
+  // Every variant carries the geometry only: positions and triangles (a `.pdef` holds no colours either);
+  // with `crop_face`, of the face alone, back in the scan's frame.
   Mesh geometry;
-  geometry.positions = scan.positions;
-  geometry.triangles = scan.triangles;
+  if (options.crop_face) {
+    Result<Mesh> face = align::crop_face(canonical.mesh, canonical.landmarks);
+    if (!face) return named(std::move(face).error());
+    Mesh back = align::to_scan(*face, canonical.frame);
+    geometry.positions = std::move(back.positions);
+    geometry.triangles = std::move(back.triangles);
+    report.vertices = geometry.vertex_count();
+    report.triangles = geometry.triangle_count();
+    report.face_only = true;
+  } else {
+    geometry.positions = scan.positions;
+    geometry.triangles = scan.triangles;
+  }
   geometry.units = scan.units;
   geometry.name = scan.name;
   const auto in_canonical = [&](const Mesh& decoded) {

@@ -201,11 +201,11 @@ Table scan_table(const ScanReport& scan) {
 
 std::string scan_heading(const ScanReport& scan) {
   if (!scan.failure.empty()) return fmt::format("{}: failed", scan.name);
-  return fmt::format("{}: {} vertices, {} triangles, units {}{} ({:.1f} s)", scan.name, scan.vertices,
-                     scan.triangles, to_string(scan.units),
-                     scan.units_per_mm != 1.0 ? fmt::format(", 1 mm = {:.4g} scan units", scan.units_per_mm)
-                                              : std::string(),
-                     scan.seconds);
+  return fmt::format(
+      "{}: {}{} vertices, {} triangles, units {}{} ({:.1f} s)", scan.name,
+      scan.face_only ? "the face cropped, " : "", scan.vertices, scan.triangles, to_string(scan.units),
+      scan.units_per_mm != 1.0 ? fmt::format(", 1 mm = {:.4g} scan units", scan.units_per_mm) : std::string(),
+      scan.seconds);
 }
 
 std::string method_notes(const Report& report) {
@@ -345,6 +345,7 @@ std::string report_json(const Report& report) {
               {"units_per_mm", scan.units_per_mm},
               {"vertices", scan.vertices},
               {"triangles", scan.triangles},
+              {"face_only", scan.face_only},
               {"ply_bytes", scan.ply_bytes},
               {"seconds", scan.seconds},
               {"heat_maps", json::array()},

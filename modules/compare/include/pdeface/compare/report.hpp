@@ -43,6 +43,10 @@ struct CompareOptions {
   bool pde_lossless = true;
   pde::Scheme scheme = pde::Scheme::Spline;
   int gzip_level = 6; //!< zlib level of the gzipped raw files (gzip's default)
+  //! Compress only the face (`align::crop_face`: the face's height, the cheeks, no ears, neck, shoulders or
+  //! pedestal), the part of the scan a `.pdef` holds, instead of the whole file. Fairer for busts and heads,
+  //! where the mesh codecs otherwise spend their bytes on what the face mask does not judge.
+  bool crop_face = false;
   FidelityOptions fidelity;
   //! Heat maps: the error (mesh → scan, mm) coloured from 0 (blue) to this (red) on the GLBs written.
   double heat_max_mm = 1.0;
@@ -89,9 +93,10 @@ struct ScanReport {
   std::string name;   //!< file name (the built-in sample: "sample face")
   std::string source; //!< as given
   Units units = Units::Unknown;
-  double units_per_mm = 1.0; //!< to state distances in the scan's units
-  std::size_t vertices = 0, triangles = 0;
-  std::size_t ply_bytes = 0; //!< the raw binary PLY every ratio refers to
+  double units_per_mm = 1.0;               //!< to state distances in the scan's units
+  std::size_t vertices = 0, triangles = 0; //!< of what was compressed (the face alone with `crop_face`)
+  bool face_only = false;                  //!< `CompareOptions::crop_face`
+  std::size_t ply_bytes = 0;               //!< the raw binary PLY every ratio refers to
   std::vector<Variant> variants;
   std::vector<HeatMap> heat_maps;
   std::string failure; //!< unreadable, no face ...: the scan has no variants
