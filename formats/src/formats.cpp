@@ -4,6 +4,8 @@
 #include "pdeface/draco/draco.hpp"
 #include "pdeface/gltf/gltf.hpp"
 #include "pdeface/obj/obj.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pdef/pdef.hpp"
 #include "pdeface/ply/ply.hpp"
 #include "pdeface/vrml/vrml.hpp"
 
@@ -25,9 +27,10 @@ constexpr std::array<std::string_view, 1> kStlExt{".stl"};
 constexpr std::array<std::string_view, 1> kGltfExt{".gltf"};
 constexpr std::array<std::string_view, 1> kGlbExt{".glb"};
 constexpr std::array<std::string_view, 1> kDracoExt{".drc"};
+constexpr std::array<std::string_view, 1> kPdefExt{".pdef"};
 
-// name, extensions, faces, point clouds, normals, colours, texcoords, lossy
-constexpr std::array<FormatInfo, 8> kFormats{{
+// name, extensions, faces, point clouds, normals, colours, texcoords, lossy, writable
+constexpr std::array<FormatInfo, 9> kFormats{{
     {Format::Vrml, "VRML", kVrmlExt, true, true, true, true, true, false},
     {Format::Obj, "OBJ", kObjExt, true, true, true, true, true, false},
     {Format::Ply, "PLY", kPlyExt, true, true, true, true, true, false},
@@ -36,6 +39,7 @@ constexpr std::array<FormatInfo, 8> kFormats{{
     {Format::Gltf, "glTF", kGltfExt, true, true, true, true, true, false},
     {Format::Glb, "GLB", kGlbExt, true, true, true, true, true, false},
     {Format::Draco, "Draco", kDracoExt, true, true, true, true, true, true},
+    {Format::Pdef, "PDEF", kPdefExt, true, false, true, false, false, true, false},
 }};
 
 std::string lowercase(std::string s) {
@@ -62,7 +66,18 @@ std::string_view skip_space(std::string_view s) {
   return s;
 }
 
-Result<Mesh> decode(Format format, std::string_view bytes, std::string_view source, Notes* notes) {
+// A `.pdef` file read as a mesh: its surface in the scan's frame and units.
+Result<Mesh> read_pdef(std::string_view bytes, std::string_view source, const ReadOptions& options) {
+  Result<pdef::Face> face = pdef::decode(bytes, source);
+  if (!face) return std::move(face).error();
+  std::optional<pdef::Resolution> grid;
+  if (options.surface_u != 0 || options.surface_v != 0)
+    grid = pdef::Resolution{options.surface_u, options.surface_v};
+  return pdef::to_mesh(*face, grid, source);
+}
+
+Result<Mesh> decode(Format format, std::string_view bytes, std::string_view source,
+                    const ReadOptions& options, Notes* notes) {
   switch (format) {
   case Format::Vrml: return vrml::read(bytes, source, notes);
   case Format::Obj: return obj::read(bytes, source, notes);
@@ -72,6 +87,7 @@ Result<Mesh> decode(Format format, std::string_view bytes, std::string_view sour
   case Format::Gltf:
   case Format::Glb: return gltf::read(bytes, source, notes);
   case Format::Draco: return draco::read(bytes, source, notes);
+  case Format::Pdef: return read_pdef(bytes, source, options);
   }
   return make_error(ErrorCode::UnsupportedFormat, "unknown format", std::string(source));
 }
@@ -123,6 +139,7 @@ std::optional<Format> format_from_content(std::string_view bytes) {
   if (bytes.starts_with("#VRML")) return Format::Vrml;
   if (bytes.starts_with("glTF")) return Format::Glb;
   if (bytes.starts_with("DRACO")) return Format::Draco;
+  if (bytes.starts_with(pdef::kMagic)) return Format::Pdef;
   if (bytes.starts_with("ply\n") || bytes.starts_with("ply\r")) return Format::Ply;
   if (bytes.starts_with("OFF") || bytes.starts_with("NOFF") || bytes.starts_with("COFF") ||
       bytes.starts_with("STOFF"))
@@ -159,7 +176,7 @@ Result<LoadedMesh> read_mesh(std::string_view bytes, std::string_view source, co
                                   extension_list()),
                       std::string(source));
   }
-  Result<Mesh> mesh = decode(*format, bytes, source, notes);
+  Result<Mesh> mesh = decode(*format, bytes, source, options, notes);
   if (!mesh) return std::move(mesh).error();
   if (mesh->name.empty()) mesh->name = std::filesystem::path(source).stem().string();
   return LoadedMesh{std::move(mesh).value(), *format, bytes.size()};
@@ -180,8 +197,15 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
                       fmt::format("cannot tell the output format from the extension '{}' (use {})",
                                   path.extension().string(), extension_list()),
                       source);
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
   const FormatInfo& fi = info(*format);
+  if (!fi.writable)
+    return make_error(
+        ErrorCode::UnsupportedFormat,
+        fmt::format("a mesh cannot be written as {}: it holds a face's curves, made from a scan "
+                    "(`pdeface encode SCAN -o FILE.pdef`)",
+                    fi.extensions.front()),
+        source);
+  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
   if (mesh.is_point_cloud() && !fi.point_clouds)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("{} cannot hold a point cloud (the mesh has no triangles)", fi.name),
@@ -210,6 +234,7 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
                           .draco = options.draco_in_gltf ? std::optional(draco_options) : std::nullopt},
                          notes);
     case Format::Draco: return draco::write(fitted, draco_options, notes);
+    case Format::Pdef: break; // not writable: refused above
     }
     return make_error(ErrorCode::UnsupportedFormat, "unknown format", source);
   }();

@@ -38,9 +38,9 @@ TEST(Result, HoldsValueOrError) {
 
 TEST(ErrorCode, EveryCodeHasItsOwnName) {
   std::set<std::string_view> names;
-  for (int c = 0; c <= static_cast<int>(ErrorCode::NoFace); ++c)
+  for (int c = 0; c <= static_cast<int>(ErrorCode::ChecksumMismatch); ++c)
     names.insert(to_string(static_cast<ErrorCode>(c)));
-  EXPECT_EQ(names.size(), static_cast<std::size_t>(ErrorCode::NoFace) + 1);
+  EXPECT_EQ(names.size(), static_cast<std::size_t>(ErrorCode::ChecksumMismatch) + 1);
 }
 
 } // namespace

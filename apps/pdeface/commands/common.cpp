@@ -124,4 +124,38 @@ void print_holes_and_gaps(const slice::ProfileSet& set) {
     fmt::print(stderr, "pdeface: note: missing from the scan: {}\n", m);
 }
 
+int encode_scan(const std::filesystem::path& in, const std::filesystem::path& out,
+                const compare::EncodeRequest& request) {
+  if (formats::format_from_path(out) != formats::Format::Pdef) {
+    fmt::print(stderr,
+               "pdeface: error: {}: the output of encode is a .pdef file (decode or reconstruct write "
+               "meshes)\n",
+               out.string());
+    return kUsageError;
+  }
+  Result<formats::LoadedMesh> scan = read_scan(in);
+  if (!scan) return fail(scan.error());
+  Result<compare::EncodeOutcome> made = compare::encode_request(scan->mesh, request);
+  if (!made) return fail(made.error());
+  const std::array<OutputFile, 1> outputs{OutputFile{out, made->encoded.bytes}};
+  if (Result<void> ok = write_outputs(outputs); !ok) return fail(ok.error());
+
+  const slice::ProfileSet& p = made->profiles;
+  const pdef::Face& f = made->face;
+  fmt::print("{}: {} curves x {} points ({:.1f} % of {}), {} scheme, N = {} modes, a = {:.3f}\n", in.string(),
+             f.curve_count(), f.sample_count(), 100.0 * p.ratio, p.reference_points,
+             pde::to_string(f.pde.scheme), *f.pde.modes, *f.pde.smoothing);
+  const pdef::Encoded& e = made->encoded;
+  if (request.encoding.lossless)
+    fmt::print("{}: {} bytes, lossless\n", out.string(), e.bytes.size());
+  else
+    fmt::print(
+        "{}: {} bytes, lossy: samples on a {:.4f} mm grid, every sample within {:.4f} mm and the surface "
+        "within {:.4f} mm of the original (at most {} mm)\n",
+        out.string(), e.bytes.size(), e.step_mm, e.max_sample_error, e.max_surface_error,
+        request.encoding.max_error_mm);
+  print_holes_and_gaps(p);
+  return 0;
+}
+
 } // namespace pdeface::cli

@@ -3,6 +3,7 @@
 // outputs as a set, and the options several commands take.
 
 #include "pdeface/align/pipeline.hpp"
+#include "pdeface/compare/encode.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/names.hpp"
@@ -36,6 +37,8 @@ void profiles_command(CLI::App& app, int& status);
 void reconstruct_command(CLI::App& app, int& status);
 void table_command(CLI::App& app, int& status);
 void compare_command(CLI::App& app, int& status);
+void encode_command(CLI::App& app, int& status);
+void decode_command(CLI::App& app, int& status);
 
 //! Prints the notes collected so far and forgets them, so that the next step's are printed once.
 void print_notes(Notes& notes);
@@ -86,5 +89,10 @@ struct SurfaceArgs {
 
 //! What slicing filled and what the scan lacks, as notes on stderr.
 void print_holes_and_gaps(const slice::ProfileSet& set);
+
+//! `pdeface encode` (and `convert scan face.pdef`): reads the scan, runs `compare::encode_request`, writes
+//! the document atomically and prints what it holds; the exit status. `out` must end in .pdef.
+int encode_scan(const std::filesystem::path& in, const std::filesystem::path& out,
+                const compare::EncodeRequest& request);
 
 } // namespace pdeface::cli

@@ -1,4 +1,5 @@
-// pdeface convert: any readable format to any writable one
+// pdeface convert: any readable format to any writable one (a scan to .pdef through `encode`, a .pdef to
+// its surface)
 
 #include "common.hpp"
 
@@ -25,6 +26,13 @@ int run_convert(ConvertRequest request) {
     Result<formats::Format> parsed = formats::format_from_name(*name);
     if (!parsed) return fail(parsed.error());
     *format = *parsed;
+  }
+  // A .pdef holds a face's curves, which only a scan gives: the scan is encoded as `pdeface encode` does.
+  if (request.write.format.value_or(formats::format_from_path(request.out).value_or(formats::Format::Ply)) ==
+      formats::Format::Pdef) {
+    compare::EncodeRequest encode;
+    encode.source = request.in.string();
+    return encode_scan(request.in, request.out, encode);
   }
   Notes notes;
   Result<formats::ConvertReport> report =

@@ -3,12 +3,16 @@
 #include "common.hpp"
 
 #include "pdeface/core/summary.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pdef/pdef.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <optional>
 
 namespace pdeface::cli {
 namespace {
@@ -38,6 +42,89 @@ nlohmann::json to_json(const fs::path& file, const formats::LoadedMesh& loaded, 
   j["unreferenced_vertices"] = s.topology.unreferenced_vertices;
   j["non_manifold_triangles"] = s.topology.non_manifold_triangles;
   return j;
+}
+
+// What a .pdef file holds, from its bytes.
+struct PdefInfo {
+  pdef::Face face;
+  std::vector<pdef::Section> sections;
+};
+
+Result<PdefInfo> pdef_info(const fs::path& file) {
+  Result<std::string> bytes = read_file(file);
+  if (!bytes) return bytes.error();
+  Result<pdef::Face> face = pdef::decode(*bytes, file.string());
+  if (!face) return face.error();
+  Result<std::vector<pdef::Section>> sections = pdef::sections(*bytes, file.string());
+  if (!sections) return sections.error();
+  return PdefInfo{*std::move(face), *std::move(sections)};
+}
+
+std::size_t filled_samples(const pdef::Face& face) {
+  std::size_t n = 0;
+  for (const std::vector<bool>& curve : face.filled)
+    n += static_cast<std::size_t>(std::ranges::count(curve, true));
+  return n;
+}
+
+nlohmann::json to_json(const PdefInfo& info) {
+  const pdef::Face& f = info.face;
+  const std::array<double, 2> size = pdef::face_size(f);
+  nlohmann::json j;
+  j["lossless"] = f.storage.lossless;
+  if (!f.storage.lossless) j["step_mm"] = f.storage.step_mm;
+  j["curves"] = f.curve_count();
+  j["samples_per_curve"] = f.sample_count();
+  j["planes_mm"] = {f.planes.front(), f.planes.back()};
+  j["width_mm"] = size[0];
+  j["height_mm"] = size[1];
+  j["filled_samples"] = filled_samples(f);
+  j["scheme"] = pde::to_string(f.pde.scheme);
+  j["spacing"] = pde::to_string(f.pde.spacing);
+  j["modes"] = *f.pde.modes;
+  j["remainder"] = f.pde.remainder;
+  j["smoothing"] = *f.pde.smoothing;
+  j["scan_units"] = to_string(f.frame.scan_units);
+  j["scale_mm_per_unit"] = f.frame.scale;
+  nlohmann::json landmarks = nlohmann::json::object();
+  for (const pdef::Landmark& l : f.landmarks)
+    landmarks[l.name] = {l.position.x(), l.position.y(), l.position.z()};
+  j["landmarks"] = landmarks;
+  j["name"] = f.name;
+  nlohmann::json sections = nlohmann::json::array();
+  for (const pdef::Section& s : info.sections)
+    sections.push_back({{"name", s.name}, {"offset", s.offset}, {"bytes", s.bytes}});
+  j["sections"] = sections;
+  return j;
+}
+
+void print_text(const PdefInfo& info) {
+  const pdef::Face& f = info.face;
+  const std::array<double, 2> size = pdef::face_size(f);
+  if (f.storage.lossless)
+    fmt::print("  storage         lossless (float64)\n");
+  else
+    fmt::print("  storage         lossy: samples on a {:.4f} mm grid, planes on {:.5f} mm\n",
+               f.storage.step_mm, f.storage.plane_step_mm);
+  fmt::print(
+      "  curves          {} x {} samples, x = {:.1f} .. {:.1f} mm, {:.1f} x {:.1f} mm, {} samples filled\n",
+      f.curve_count(), f.sample_count(), f.planes.front(), f.planes.back(), size[0], size[1],
+      filled_samples(f));
+  fmt::print("  surface         {} scheme, N = {} modes{}, a = {:.4f}, {} spacing\n",
+             pde::to_string(f.pde.scheme), *f.pde.modes, f.pde.remainder ? " + remainder" : "",
+             *f.pde.smoothing, pde::to_string(f.pde.spacing));
+  fmt::print("  scan frame      units {}, {:.6g} mm per unit\n", to_string(f.frame.scan_units),
+             f.frame.scale);
+  std::string names;
+  for (const pdef::Landmark& l : f.landmarks)
+    names += (names.empty() ? "" : ", ") + l.name;
+  fmt::print("  landmarks       {}\n", names.empty() ? "none" : names);
+  if (!f.name.empty()) fmt::print("  name            {}\n", f.name);
+  std::string parts;
+  for (const pdef::Section& s : info.sections)
+    parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", s.name, s.bytes);
+  fmt::print("  bytes           {}\n", parts);
+  fmt::print("  (the counts and the box above are the surface decoded at about 1 mm spacing)\n");
 }
 
 void print_text(const fs::path& file, const formats::LoadedMesh& loaded, const MeshSummary& s) {
@@ -78,11 +165,23 @@ int run_info(const InfoRequest& request) {
       status = fail(loaded.error());
       continue;
     }
+    std::optional<PdefInfo> pdef;
+    if (loaded->format == formats::Format::Pdef) {
+      Result<PdefInfo> read = pdef_info(file);
+      if (!read) {
+        status = fail(read.error());
+        continue;
+      }
+      pdef = *std::move(read);
+    }
     const MeshSummary summary = summarize(loaded->mesh);
-    if (request.json)
+    if (request.json) {
       all.push_back(to_json(file, *loaded, summary));
-    else
-      print_text(file, *loaded, summary);
+      if (pdef) all.back()["pdef"] = to_json(*pdef);
+      continue;
+    }
+    print_text(file, *loaded, summary);
+    if (pdef) print_text(*pdef);
   }
   if (request.json) fmt::print("{}\n", all.dump(2));
   return status;

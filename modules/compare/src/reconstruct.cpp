@@ -1,11 +1,9 @@
 #include "pdeface/compare/reconstruct.hpp"
 
 #include "pdeface/align/frame.hpp"
-
-#include <fmt/format.h>
+#include "pdeface/compare/encode.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 namespace pdeface::compare {
 namespace {
@@ -13,10 +11,6 @@ namespace {
 Error named(Error error, std::string_view source) {
   if (error.source.empty()) error.source = source;
   return error;
-}
-
-std::size_t points_over(double length, double spacing) {
-  return std::max<std::size_t>(2, static_cast<std::size_t>(std::ceil(length / spacing)) + 1);
 }
 
 double width(const slice::ProfileSet& p) { return p.border[0] + p.border[1]; }
@@ -47,13 +41,11 @@ pde::Curves to_curves(const slice::ProfileSet& profiles) {
 }
 
 Resolution resolution_for(const slice::ProfileSet& profiles, double spacing_mm) {
-  return {points_over(width(profiles), spacing_mm), points_over(height(profiles), spacing_mm)};
+  return pdef::grid_for(width(profiles), height(profiles), spacing_mm);
 }
 
 Resolution resolution_for(const slice::ProfileSet& profiles, std::size_t v) {
-  v = std::max<std::size_t>(v, 2);
-  const double spacing = height(profiles) / static_cast<double>(v - 1);
-  return {points_over(width(profiles), spacing), v};
+  return pdef::grid_for(width(profiles), height(profiles), v);
 }
 
 Result<pde::Surface> surface_from(const slice::ProfileSet& profiles, const pde::Options& options,
@@ -76,16 +68,14 @@ Result<Reconstruction> reconstruct(const CanonicalScan& scan, const ReconstructO
   Resolution grid = options.resolution.value_or(resolution_for(*profiles, options.grid_spacing_mm));
   if (grid.u == 0) grid = resolution_for(*profiles, grid.v);
   grid = {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
-  if (grid.u > kMaxGridVertices / grid.v)
-    return make_error(ErrorCode::InvalidArgument,
-                      fmt::format("a {} x {} grid has more than {} vertices: ask for a coarser resolution",
-                                  grid.u, grid.v, kMaxGridVertices),
-                      std::string(source));
-  Mesh mesh = surface->mesh(grid.u, grid.v);
-  mesh.name = scan.mesh.name.empty() ? std::string("pde surface") : scan.mesh.name + " (pde surface)";
-  Mesh in_scan = align::to_scan(mesh, scan.frame);
-  return Reconstruction{std::move(profiles).value(), std::move(surface).value(), grid, std::move(mesh),
-                        std::move(in_scan)};
+  Result<pdef::SurfaceMesh> meshes = pdef::surface_mesh(*surface, grid, frame_of(scan.frame), source);
+  if (!meshes) return std::move(meshes).error();
+  const std::string name =
+      scan.mesh.name.empty() ? std::string("pde surface") : scan.mesh.name + " (pde surface)";
+  meshes->canonical.name = name;
+  meshes->scan.name = name;
+  return Reconstruction{std::move(profiles).value(), std::move(surface).value(), grid,
+                        std::move(meshes->canonical), std::move(meshes->scan)};
 }
 
 } // namespace pdeface::compare

@@ -21,6 +21,7 @@ std::string_view to_string(ErrorCode code) noexcept {
   case ErrorCode::UndefinedName: return "undefined name";
   case ErrorCode::InvalidArgument: return "invalid argument";
   case ErrorCode::NoFace: return "no face";
+  case ErrorCode::ChecksumMismatch: return "checksum mismatch";
   }
   return "error";
 }

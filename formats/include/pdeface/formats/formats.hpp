@@ -15,7 +15,7 @@
 
 namespace pdeface::formats {
 
-enum class Format { Vrml, Obj, Ply, Off, Stl, Gltf, Glb, Draco };
+enum class Format { Vrml, Obj, Ply, Off, Stl, Gltf, Glb, Draco, Pdef };
 
 //! What a format is and what it can hold.
 struct FormatInfo {
@@ -27,7 +27,9 @@ struct FormatInfo {
   bool normals = false;
   bool colors = false;
   bool texcoords = false;
-  bool lossy = false; //!< positions are quantised (Draco)
+  bool lossy = false; //!< positions are quantised (Draco) or the surface is rebuilt (.pdef)
+  bool writable =
+      true; //!< `encode_mesh` writes it (not .pdef: a face's curves come from a scan, `pdeface encode`)
 };
 
 //! Every format, in a stable order.
@@ -46,6 +48,10 @@ struct FormatInfo {
 
 struct ReadOptions {
   std::optional<Format> format; //!< override detection
+  //! `.pdef`: the grid its surface is evaluated on, u × v ({0, v}: v points along the face's height and as
+  //! many across as keep the cells square; {0, 0}: about 1 mm between points).
+  std::size_t surface_u = 0;
+  std::size_t surface_v = 0;
 };
 
 struct LoadedMesh {

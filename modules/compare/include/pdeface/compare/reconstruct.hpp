@@ -6,6 +6,7 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/pdef/mesh.hpp"
 #include "pdeface/slice/profiles.hpp"
 
 #include <cstddef>
@@ -31,15 +32,13 @@ struct CanonicalScan {
 [[nodiscard]] pde::Curves to_curves(const slice::ProfileSet& profiles);
 
 //! The size of the grid a surface is evaluated on: `u` points across the face, `v` along its height
-//! (`u = 0`: as many as keep the cells square on average, `resolution_for(profiles, v)`).
-struct Resolution {
-  std::size_t u = 0;
-  std::size_t v = 0;
-};
+//! (`u = 0`: as many as keep the cells square on average, `resolution_for(profiles, v)`). The one a decoded
+//! `.pdef` uses too.
+using Resolution = pdef::Resolution;
 
 //! The most vertices a reconstruction grid may have (a 2000 × 2000 grid, ~300 MB of mesh): a mistyped
 //! resolution must not exhaust the machine.
-inline constexpr std::size_t kMaxGridVertices = 4'000'000;
+inline constexpr std::size_t kMaxGridVertices = pdef::kMaxGridVertices;
 
 //! A grid with about `spacing_mm` between neighbouring points across (border to border) and along (the
 //! height range) the face, at least 2 × 2.
@@ -73,7 +72,8 @@ struct Reconstruction {
 
 //! The method on `scan` (any frame and units) with its `alignment`: the scan moved into the canonical
 //! frame, sliced into curves (`slice::extract_profiles`), the PDE surface solved through them and
-//! triangulated, and the mesh mapped back with the alignment's frame. Errors: those of each stage, and
+//! triangulated, and the mesh mapped back with the alignment's frame (`pdef::surface_mesh`: what a decoded
+//! `.pdef` does, so that a lossless file gives this mesh exactly). Errors: those of each stage, and
 //! `InvalidArgument` for a grid of more than `kMaxGridVertices`; `source` (the scan's name) set.
 [[nodiscard]] Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& alignment,
                                                  const ReconstructOptions& options = {},

@@ -30,6 +30,7 @@ enum class ErrorCode {
   UndefinedName,      //!< a reference (e.g. VRML `USE`) to a name never defined
   InvalidArgument,    //!< an option value outside its range
   NoFace,             //!< a scan in which no face can be found
+  ChecksumMismatch,   //!< the data's checksum does not match: it was damaged after it was written
 };
 
 //! A short lowercase name for the code ("truncated", "bad magic", ...).

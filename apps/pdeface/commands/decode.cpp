@@ -1,0 +1,56 @@
+// pdeface decode: a .pdef file -> its PDE surface as a mesh with normals, in the scan's frame and units.
+
+#include "common.hpp"
+
+#include <fmt/format.h>
+
+namespace pdeface::cli {
+namespace {
+
+struct DecodeArgs {
+  fs::path in;
+  fs::path out;
+  std::vector<std::size_t> resolution; // {v} or {u, v}
+  formats::WriteOptions write;
+};
+
+int run_decode(const DecodeArgs& args) {
+  formats::ReadOptions read{.format = formats::Format::Pdef};
+  if (args.resolution.size() == 1) read.surface_v = args.resolution[0];
+  if (args.resolution.size() == 2) {
+    read.surface_u = args.resolution[0];
+    read.surface_v = args.resolution[1];
+  }
+  Notes notes;
+  Result<formats::LoadedMesh> loaded = formats::read_mesh(args.in, read, &notes);
+  print_notes(notes);
+  if (!loaded) return fail(loaded.error());
+  Result<std::size_t> written = formats::write_mesh(loaded->mesh, args.out, args.write, &notes);
+  print_notes(notes);
+  if (!written) return fail(written.error());
+  fmt::print("{} ({} bytes) -> {}: {} vertices, {} triangles, {} bytes, in the scan's frame ({})\n",
+             args.in.string(), loaded->bytes, args.out.string(), loaded->mesh.vertex_count(),
+             loaded->mesh.triangle_count(), *written, to_string(loaded->mesh.units));
+  return 0;
+}
+
+} // namespace
+
+void decode_command(CLI::App& app, int& status) {
+  auto args = std::make_shared<DecodeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "decode", "A .pdef file -> its PDE surface as a mesh with normals, in the scan's frame and units");
+  add_input(cmd, args->in, "The .pdef file");
+  cmd->add_option("-o,--output", args->out, "Mesh to write (.glb .gltf .obj .ply .wrl .drc .off .stl)")
+      ->required();
+  cmd->add_option("--resolution", args->resolution,
+                  "Grid: V points along the face's height (across in proportion), or UxV; default about 1 mm "
+                  "spacing")
+      ->delimiter('x')
+      ->expected(1, 2)
+      ->check(CLI::Range(std::size_t{2}, std::size_t{4000}));
+  add_write_options(cmd, args->write);
+  cmd->callback([args, &status] { status = run_decode(*args); });
+}
+
+} // namespace pdeface::cli

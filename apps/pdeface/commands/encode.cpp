@@ -1,0 +1,55 @@
+// pdeface encode: scan -> aligned -> profile curves -> a .pdef document (the curves, what rebuilds the
+// surface through them and the frame back to the scan).
+
+#include "common.hpp"
+
+namespace pdeface::cli {
+namespace {
+
+struct EncodeArgs {
+  fs::path in;
+  fs::path out;
+  CurveArgs curves;
+  SurfaceArgs surface;
+  double max_error = pdef::kDefaultMaxError;
+  bool lossless = false;
+  bool store_landmarks = false;
+  std::string name;
+};
+
+int run_encode(const EncodeArgs& args) {
+  Result<align::LandmarkSource> landmarks = landmark_source(args.curves.landmarks);
+  if (!landmarks) return fail(landmarks.error());
+  compare::EncodeRequest request{.landmarks = *std::move(landmarks),
+                                 .profiles = args.curves.profile_options(),
+                                 .pde = args.surface.pde_options(),
+                                 .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
+                                 .store_landmarks = args.store_landmarks,
+                                 .name = args.name,
+                                 .source = args.in.string()};
+  return encode_scan(args.in, args.out, request);
+}
+
+} // namespace
+
+void encode_command(CLI::App& app, int& status) {
+  auto args = std::make_shared<EncodeArgs>();
+  CLI::App* cmd = app.add_subcommand(
+      "encode",
+      "Scan -> aligned -> profile curves -> a .pdef file: the curves, the PDE surface's settings and "
+      "the frame back to the scan (docs/pdef-format.md)");
+  add_input(cmd, args->in, "Scan (any readable format, mesh or point cloud)");
+  cmd->add_option("-o,--output", args->out, "The .pdef file to write")->required();
+  cmd->add_option("--max-error", args->max_error,
+                  "Lossy: every sample, and the surface decoded, within this distance (mm) of the original")
+      ->check(CLI::Range(0.001, 10.0))
+      ->capture_default_str();
+  cmd->add_flag("--lossless", args->lossless, "Store the curves exactly (float64, compressed)");
+  cmd->add_flag("--store-landmarks", args->store_landmarks, "Also store the landmarks (canonical frame)");
+  cmd->add_option("--name", args->name, "A name to store in the file");
+  args->curves.add_to(cmd);
+  args->surface.add_to(cmd);
+  cmd->callback([args, &status] { status = run_encode(*args); });
+}
+
+} // namespace pdeface::cli

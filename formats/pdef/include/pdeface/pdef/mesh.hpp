@@ -1,0 +1,64 @@
+#pragma once
+//! \file
+//! From curves to a mesh in the scan's frame: the one path both `compare::reconstruct` and a decoded
+//! `.pdef` take (solve the PDE surface, evaluate it on a grid, triangulate with normals, map back), so that
+//! a lossless file gives the reconstruction's mesh exactly.
+
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/core/result.hpp"
+#include "pdeface/pde/surface.hpp"
+#include "pdeface/pdef/pdef.hpp"
+
+#include <cstddef>
+#include <optional>
+#include <string_view>
+
+namespace pdeface::pdef {
+
+//! The size of the grid a surface is evaluated on: `u` points across the face, `v` along its height
+//! (`u = 0`: as many as keep the cells square on average).
+struct Resolution {
+  std::size_t u = 0;
+  std::size_t v = 0;
+};
+
+//! The most vertices a grid may have (a 2000 × 2000 grid, ~300 MB of mesh): a mistyped resolution must not
+//! exhaust the machine.
+inline constexpr std::size_t kMaxGridVertices = 4'000'000;
+
+//! The default spacing between grid points (mm): about 1 mm across and along the face.
+inline constexpr double kDefaultGridSpacing = 1.0;
+
+//! A grid with about `spacing_mm` between neighbouring points across a face `width_mm` wide (border curve
+//! to border curve) and `height_mm` tall (lowest to highest curve end), at least 2 × 2.
+[[nodiscard]] Resolution grid_for(double width_mm, double height_mm, double spacing_mm);
+//! `v` points along the height and as many across as keep the cells square on average.
+[[nodiscard]] Resolution grid_for(double width_mm, double height_mm, std::size_t v);
+//! The grid asked for: `asked` (u = 0: square cells for its v), else about `kDefaultGridSpacing`.
+[[nodiscard]] Resolution grid_for(double width_mm, double height_mm, std::optional<Resolution> asked);
+
+//! The face's width (first to last plane) and height (lowest to highest curve end), mm.
+[[nodiscard]] std::array<double, 2> face_size(const Face& face);
+
+//! A solved surface as a mesh with normals, in the canonical frame (mm) and mapped into the scan's frame
+//! and units.
+struct SurfaceMesh {
+  Mesh canonical;
+  Mesh scan;
+};
+
+//! `surface` evaluated on `grid` (at least 2 × 2), triangulated with normals, and mapped back with `frame`
+//! (positions by `Frame::to_scan`, normals turned, units those of the scan). Errors: `InvalidArgument`
+//! (naming `source`) for a grid of more than `kMaxGridVertices`.
+[[nodiscard]] Result<SurfaceMesh> surface_mesh(const pde::Surface& surface, Resolution grid,
+                                               const Frame& frame, std::string_view source = {});
+
+//! The surface a face describes, built with its own PDE options. Errors: those of `pde::Surface::build`.
+[[nodiscard]] Result<pde::Surface> surface_of(const Face& face, std::string_view source = {});
+
+//! The face's surface as a mesh in the scan's frame and units, on `resolution` (default about 1 mm
+//! spacing). Errors: those of `surface_of` and `surface_mesh`.
+[[nodiscard]] Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution = std::nullopt,
+                                   std::string_view source = {});
+
+} // namespace pdeface::pdef

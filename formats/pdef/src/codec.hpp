@@ -1,0 +1,80 @@
+#pragma once
+// What the encoder and decoder share: the format's constants, the lossy grid and the samples as integers
+// on it, and the prediction that turns them into small residuals.
+
+#include "pdeface/pdef/pdef.hpp"
+
+#include <array>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pdeface::pdef::detail {
+
+inline constexpr std::uint8_t kVersion = 1;
+inline constexpr std::uint8_t kFlagLossless = 0x01;
+inline constexpr std::uint8_t kKnownFlags = kFlagLossless;
+inline constexpr std::size_t kHeaderBytes = 10; // magic, version, flags, length
+inline constexpr std::size_t kChecksumBytes = 4;
+inline constexpr std::size_t kMinFileBytes = kHeaderBytes + kChecksumBytes;
+
+enum Tag : std::uint8_t { kTagFace = 1, kTagCurves = 2, kTagLandmarks = 3, kTagName = 4 };
+inline constexpr std::uint8_t kFirstAncillaryTag = 0x80;
+
+//! Lossy steps are whole multiples of 2^-20 mm, so that every decoded value is an exact binary fraction.
+inline constexpr double kStepUnit = 1.0 / 1048576.0;
+//! The planes' grid is this many times finer than the samples' (28 numbers: almost free).
+inline constexpr std::uint32_t kPlaneRefinement = 8;
+//! The largest magnitude of a quantised coordinate (in steps): far beyond any face, and small enough
+//! that predictions and residuals stay well inside 64 (and zigzagged residuals inside 32) bits.
+inline constexpr std::int64_t kMaxQuantised = std::int64_t{1} << 26;
+
+//! Steps stay below 2^26 units (64 mm), so that a value (at most 2^26 steps) times its step is an exact
+//! integer below 2^52 before it is scaled by 2^-20: decoding involves no rounding at all.
+inline constexpr std::uint32_t kMaxStepUnits = std::uint32_t{1} << 26;
+
+//! The lossy grid, in multiples of `kStepUnit`.
+struct Grid {
+  std::uint32_t step = 1;
+  std::uint32_t plane_step = 1;
+  [[nodiscard]] double step_mm() const { return step * kStepUnit; }
+  [[nodiscard]] double plane_step_mm() const { return plane_step * kStepUnit; }
+};
+
+//! The samples on a grid: planes[j], y[j·K + k], z[j·K + k] in steps.
+struct Quantised {
+  std::size_t curves = 0;
+  std::size_t samples = 0;
+  std::vector<std::int64_t> planes;
+  std::vector<std::int64_t> y;
+  std::vector<std::int64_t> z;
+};
+
+//! The prediction's weights (fixed point, kWeightBits fractional bits), one set per coordinate.
+inline constexpr std::size_t kFeatures = 7;
+inline constexpr int kWeightBits = 12;
+inline constexpr std::int32_t kMaxWeight = (1 << 15) - 1;
+using Weights = std::array<std::int32_t, kFeatures>;
+//! The weights a file uses unless it stores its own: least squares on ten of the shared scans at 10 %
+//! (docs/pdef-format.md, "Prediction"), good from 5 to 15 %.
+inline constexpr std::array<Weights, 2> kDefaultWeights{
+    {{3621, 82, 3395, -3123, 141, 292, -324}, {3635, -744, 225, -101, 897, 310, -659}}};
+
+//! The prediction of sample (j, k) of one coordinate from those decoded before it (curves 0..j−1 whole,
+//! samples 0..k−1 of curve j) and the planes: docs/pdef-format.md, "Prediction".
+[[nodiscard]] std::int64_t predict(std::span<const std::int64_t> values, std::span<const std::int64_t> planes,
+                                   std::size_t samples, const Weights& w, std::size_t j, std::size_t k);
+//! The weights that predict `values` best (least squares over the curves from the third on), rounded.
+[[nodiscard]] Weights fit_weights(std::span<const std::int64_t> values, std::span<const std::int64_t> planes,
+                                  std::size_t samples);
+
+//! Residuals ↔ values (zigzag symbols), in the order samples are coded.
+[[nodiscard]] std::vector<std::uint32_t> to_symbols(std::span<const std::int64_t> values,
+                                                    std::span<const std::int64_t> planes, std::size_t samples,
+                                                    const Weights& w);
+//! False when a value leaves ±kMaxQuantised (a corrupt stream): `values` is then incomplete.
+[[nodiscard]] bool from_symbols(std::span<const std::uint32_t> symbols, std::span<const std::int64_t> planes,
+                                std::size_t samples, const Weights& w, std::span<std::int64_t> values);
+
+} // namespace pdeface::pdef::detail

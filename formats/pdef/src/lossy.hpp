@@ -1,0 +1,40 @@
+#pragma once
+// The lossy grid: choosing it so that the samples and the surface stay within the maximum error, and the
+// samples on it.
+
+#include "codec.hpp"
+
+#include "pdeface/core/result.hpp"
+#include "pdeface/pde/surface.hpp"
+#include "pdeface/pdef/pdef.hpp"
+
+namespace pdeface::pdef::detail {
+
+struct LossyPlan {
+  Grid grid;
+  bool frame64 = false;
+  Quantised quantised;
+  double max_sample_error = 0.0;
+  double max_surface_error = 0.0;
+  std::size_t tightenings = 0;
+};
+
+//! The samples on `grid` (nullopt when one leaves ±kMaxQuantised or the planes stop ascending).
+[[nodiscard]] std::optional<Quantised> quantise(const Face& face, const Grid& grid);
+//! The face's planes and curves from their values on `grid` (every sample of curve j at x = its plane).
+void dequantise(const Quantised& q, const Grid& grid, Face& face);
+
+//! The coarsest grid (steps 0.98^i of the first that keeps every sample within the maximum error) on which
+//! the decoded samples and the decoded surface stay within `options.max_error_mm` of the face's
+//! (`surface_error`); a face decoded from a lossy file keeps its own grid when that is fine enough.
+//! Errors: `InvalidArgument` when the surface cannot be built or no grid fits.
+[[nodiscard]] Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options);
+
+//! The Hausdorff distance (mm) between the surfaces `reference` and `decoded`: both evaluated on a grid of 32
+//! points per curve interval across and 16 per sample interval along (0.1-0.2 mm apart on a face: the
+//! distance between two such surfaces has peaks about 1 mm wide where they bend sharply), each point's
+//! distance to the other surface estimated by its tangent plane, and the largest projected onto it (damped
+//! Gauss-Newton from the same (u, v)), both ways. The search stops as soon as it exceeds `limit`.
+[[nodiscard]] double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit);
+
+} // namespace pdeface::pdef::detail

@@ -1,0 +1,83 @@
+#include "pdeface/pdef/mesh.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace pdeface::pdef {
+namespace {
+
+// Points spread over `length` about `spacing` apart: at least 2; lengths that are not positive and finite
+// (a hostile file's curves may run downwards or not at all) get 2, absurd ones more than any grid may have.
+std::size_t points_over(double length, double spacing) {
+  const double intervals = std::ceil(length / spacing);
+  if (!(intervals >= 1)) return 2;
+  if (!(intervals < static_cast<double>(kMaxGridVertices))) return kMaxGridVertices + 1;
+  return std::max<std::size_t>(2, static_cast<std::size_t>(intervals) + 1);
+}
+
+} // namespace
+
+Resolution grid_for(double width_mm, double height_mm, double spacing_mm) {
+  return {points_over(width_mm, spacing_mm), points_over(height_mm, spacing_mm)};
+}
+
+Resolution grid_for(double width_mm, double height_mm, std::size_t v) {
+  v = std::max<std::size_t>(v, 2);
+  const double spacing = height_mm / static_cast<double>(v - 1);
+  return {points_over(width_mm, spacing), v};
+}
+
+Resolution grid_for(double width_mm, double height_mm, std::optional<Resolution> asked) {
+  Resolution grid = asked ? *asked : grid_for(width_mm, height_mm, kDefaultGridSpacing);
+  if (grid.u == 0) grid = grid_for(width_mm, height_mm, grid.v);
+  return {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
+}
+
+std::array<double, 2> face_size(const Face& face) {
+  double bottom = 0, top = 0;
+  for (std::size_t j = 0; j < face.curve_count(); ++j) {
+    const std::array<double, 2> e = face.extent(j);
+    bottom = j == 0 ? e[0] : std::min(bottom, e[0]);
+    top = j == 0 ? e[1] : std::max(top, e[1]);
+  }
+  const double width = face.planes.empty() ? 0.0 : face.planes.back() - face.planes.front();
+  return {width, top - bottom};
+}
+
+Result<SurfaceMesh> surface_mesh(const pde::Surface& surface, Resolution grid, const Frame& frame,
+                                 std::string_view source) {
+  grid = {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
+  if (grid.u > kMaxGridVertices / grid.v || grid.v > kMaxGridVertices / 2)
+    return make_error(ErrorCode::InvalidArgument,
+                      fmt::format("a {} x {} grid has more than {} vertices: ask for a coarser resolution",
+                                  grid.u, grid.v, kMaxGridVertices),
+                      std::string(source));
+  SurfaceMesh out{surface.mesh(grid.u, grid.v), {}};
+  out.scan = out.canonical;
+  for (Vec3& p : out.scan.positions)
+    p = frame.to_scan(p);
+  const Eigen::Matrix3f back = frame.rotation.transpose().cast<float>();
+  for (Vec3f& n : out.scan.normals)
+    n = back * n;
+  out.scan.units = frame.scan_units;
+  return out;
+}
+
+Result<pde::Surface> surface_of(const Face& face, std::string_view source) {
+  return pde::Surface::build(face.curves, face.pde, source);
+}
+
+Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution, std::string_view source) {
+  Result<pde::Surface> surface = surface_of(face, source);
+  if (!surface) return std::move(surface).error();
+  const std::array<double, 2> size = face_size(face);
+  Result<SurfaceMesh> mesh =
+      surface_mesh(*surface, grid_for(size[0], size[1], resolution), face.frame, source);
+  if (!mesh) return std::move(mesh).error();
+  mesh->scan.name = face.name;
+  return std::move(mesh->scan);
+}
+
+} // namespace pdeface::pdef

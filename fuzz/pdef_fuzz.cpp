@@ -1,0 +1,59 @@
+// libFuzzer target for the .pdef decoder: whatever the bytes, decoding returns a face or an error (never a
+// crash, a hang or an allocation the file's size does not justify); a face it returns can be described,
+// meshed and encoded again, and encoding it gives a file that decodes to the same face.
+//
+// Every input is decoded twice: as it is, and repaired (its length field and checksum set to match), so
+// that mutations reach the parser behind the checksum.
+
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pdef/pdef.hpp"
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace {
+
+namespace pdef = pdeface::pdef;
+
+void one(std::string_view bytes) {
+  pdeface::Result<pdef::Face> face = pdef::decode(bytes, "fuzz");
+  if (!face) {
+    if (!face.error().where.byte || *face.error().where.byte > bytes.size())
+      throw std::logic_error("an error without its byte");
+    return;
+  }
+  if (!pdef::sections(bytes, "fuzz")) throw std::logic_error("sections() refuses what decode() read");
+  // A surface and a small mesh (may be refused: a hostile scheme or smoothing; must not crash).
+  if (face->curve_count() * face->sample_count() <= 4096) (void)pdef::to_mesh(*face, pdef::Resolution{9, 9});
+  // Encoding it again: on its own grid (an error its grid satisfies: no surface search), a file that
+  // decodes to the same values.
+  const pdeface::Result<pdef::Encoded> again = pdef::encode(
+      *face, {.lossless = face->storage.lossless, .max_error_mm = std::max(0.05, face->storage.step_mm)});
+  if (again) {
+    const pdeface::Result<pdef::Face> back = pdef::decode(again->bytes, "again");
+    if (!back || back->planes != face->planes || back->curves.samples != face->curves.samples ||
+        back->filled != face->filled || back->pde.smoothing != face->pde.smoothing)
+      throw std::logic_error("a decoded face does not survive encoding again");
+  }
+}
+
+} // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view bytes(reinterpret_cast<const char*>(data), size);
+  one(bytes);
+  if (size >= 14 && size < (std::size_t{1} << 26)) {
+    std::string repaired(bytes);
+    for (int i = 0; i < 4; ++i)
+      repaired[6 + static_cast<std::size_t>(i)] = static_cast<char>(size >> (8 * i));
+    const std::uint32_t crc = pdef::checksum(std::string_view(repaired).substr(0, size - 4));
+    for (int i = 0; i < 4; ++i)
+      repaired[size - 4 + static_cast<std::size_t>(i)] = static_cast<char>(crc >> (8 * i));
+    one(repaired);
+  }
+  return 0;
+}

@@ -1,0 +1,48 @@
+#pragma once
+//! \file
+//! A scan as a `.pdef` document: aligned, sliced into curves, the PDE options resolved on them, and the
+//! document `pdeface::pdef` encodes filled in (`pdeface encode`, `pdeface convert scan.ply face.pdef`).
+
+#include "pdeface/align/pipeline.hpp"
+#include "pdeface/compare/reconstruct.hpp"
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/core/result.hpp"
+#include "pdeface/pdef/pdef.hpp"
+#include "pdeface/slice/profiles.hpp"
+
+#include <string>
+
+namespace pdeface::compare {
+
+//! The alignment's frame as the document stores it.
+[[nodiscard]] pdef::Frame frame_of(const align::FaceFrame& frame);
+
+//! The document of `profiles` and the `surface` built through them with `options`: the curves
+//! (`to_curves`), their planes and filled samples, the frame back to the scan, and the options with the
+//! smoothing and mode count the surface used.
+[[nodiscard]] pdef::Face to_face(const slice::ProfileSet& profiles, const pde::Surface& surface,
+                                 const pde::Options& options);
+
+struct EncodeRequest {
+  align::LandmarkSource landmarks;
+  slice::ProfileOptions profiles;
+  //! As `reconstruct` builds the surface (physical spacing), so that a lossless file decodes to its mesh.
+  pde::Options pde{.spacing = pde::Spacing::Physical};
+  pdef::EncodeOptions encoding;
+  bool store_landmarks = false; //!< also store the landmarks (canonical frame)
+  std::string name;             //!< stored when not empty
+  std::string source;           //!< the scan's name, for errors
+};
+
+struct EncodeOutcome {
+  align::Alignment alignment;
+  slice::ProfileSet profiles;
+  pdef::Face face;
+  pdef::Encoded encoded;
+};
+
+//! `pdeface encode`: aligned (landmarks detected or from a file), sliced, the surface's options resolved,
+//! encoded. Errors: those of each stage, naming `request.source`.
+[[nodiscard]] Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& request);
+
+} // namespace pdeface::compare

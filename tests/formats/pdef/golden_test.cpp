@@ -1,0 +1,206 @@
+// Golden files in tests/data/pdef: made once (DISABLED_Regenerate, run on purpose), then every change to
+// the format or the encoder that alters their bytes or what they decode to fails here.
+//   tiny.pdef                     synthetic_face(4, 4), lossy: the worked example of docs/pdef-format.md
+//   synthetic.pdef / _lossless    synthetic_face(), lossy and lossless, with landmarks and a name
+//   sample_10.pdef / _lossless    the built-in sample face through the whole pipeline at 10 %
+//   (sample_10.json:
+//                                 what it held when it was made)
+
+#include "pdeface/compare/encode.hpp"
+#include "pdeface/core/sample_face.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pdef/pdef.hpp"
+
+#include "pdef_support.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cstdlib>
+#include <fstream>
+
+namespace pdeface::pdef {
+namespace {
+
+using test::slurp;
+using test::synthetic_face;
+
+std::filesystem::path golden(std::string_view name) { return test::fixtures() / "pdef" / name; }
+
+Face landmarked(Face face) {
+  face.name = "synthetic face";
+  face.landmarks = {{"nose_tip", Vec3(0.125, 0.25, 18.0)}, {"chin", Vec3(0.0, -68.0, 2.5)}};
+  return face;
+}
+
+compare::EncodeRequest sample_request(bool lossless) {
+  compare::EncodeRequest r;
+  r.encoding.lossless = lossless;
+  r.source = "sample face";
+  return r;
+}
+
+TEST(PdefGolden, DISABLED_Regenerate) {
+  std::filesystem::create_directories(golden(""));
+  const auto write = [](std::string_view name, const std::string& bytes) {
+    std::ofstream(golden(name), std::ios::binary) << bytes;
+  };
+  write("tiny.pdef", encode(synthetic_face(4, 4)).value().bytes);
+  write("synthetic.pdef", encode(landmarked(synthetic_face())).value().bytes);
+  write("synthetic_lossless.pdef", encode(landmarked(synthetic_face()), {.lossless = true}).value().bytes);
+  const Mesh sample = sample_face();
+  const compare::EncodeOutcome lossy = compare::encode_request(sample, sample_request(false)).value();
+  const compare::EncodeOutcome lossless = compare::encode_request(sample, sample_request(true)).value();
+  write("sample_10.pdef", lossy.encoded.bytes);
+  write("sample_10_lossless.pdef", lossless.encoded.bytes);
+  nlohmann::json j;
+  j["made_by"] =
+      "tests/formats/pdef/golden_test.cpp (PdefGolden.DISABLED_Regenerate) from pdeface::sample_face()";
+  j["curves"] = lossless.face.curve_count();
+  j["samples"] = lossless.face.sample_count();
+  j["modes"] = *lossless.face.pde.modes;
+  j["smoothing"] = *lossless.face.pde.smoothing;
+  j["planes_mm"] = lossless.face.planes;
+  j["lossy_bytes"] = lossy.encoded.bytes.size();
+  j["lossy_step_mm"] = lossy.encoded.step_mm;
+  j["lossless_bytes"] = lossless.encoded.bytes.size();
+  std::ofstream(golden("sample_10.json")) << j.dump(2) << "\n";
+}
+
+TEST(PdefGolden, TheEncoderWritesTheGoldenBytes) {
+  EXPECT_EQ(encode(synthetic_face(4, 4)).value().bytes, slurp(golden("tiny.pdef")));
+  EXPECT_EQ(encode(landmarked(synthetic_face())).value().bytes, slurp(golden("synthetic.pdef")));
+  EXPECT_EQ(encode(landmarked(synthetic_face()), {.lossless = true}).value().bytes,
+            slurp(golden("synthetic_lossless.pdef")));
+  // Files from the pipeline: the slicer may change, so their faces are encoded again as decoded.
+  for (const char* name : {"sample_10.pdef", "sample_10_lossless.pdef"}) {
+    const std::string bytes = slurp(golden(name));
+    const Face face = decode(bytes, name).value();
+    EXPECT_EQ(encode(face, {.lossless = face.storage.lossless}).value().bytes, bytes) << name;
+  }
+}
+
+// Every decoded value of a file made from synthetic_face: on the file's grid, the formula's value rounded to
+// it (y, z), within the maximum error, x on its curve's plane.
+void expect_synthetic_values(const Face& decoded, const Face& formula) {
+  ASSERT_EQ(decoded.curve_count(), formula.curve_count());
+  ASSERT_EQ(decoded.sample_count(), formula.sample_count());
+  const double step = decoded.storage.step_mm, plane_step = decoded.storage.plane_step_mm;
+  ASSERT_GT(step, 0);
+  for (std::size_t j = 0; j < formula.curve_count(); ++j) {
+    EXPECT_EQ(decoded.planes[j], std::round(formula.planes[j] / plane_step) * plane_step) << j;
+    for (Eigen::Index k = 0; k < formula.curves.samples[j].rows(); ++k) {
+      const auto& want = formula.curves.samples[j];
+      const auto& got = decoded.curves.samples[j];
+      EXPECT_EQ(got(k, 0), decoded.planes[j]);
+      EXPECT_EQ(got(k, 1), std::round(want(k, 1) / step) * step) << j << "," << k;
+      EXPECT_EQ(got(k, 2), std::round(want(k, 2) / step) * step) << j << "," << k;
+      EXPECT_LE((got.row(k) - want.row(k)).norm(), kDefaultMaxError) << j << "," << k;
+    }
+  }
+  EXPECT_EQ(decoded.filled, formula.filled);
+  EXPECT_EQ(decoded.pde.smoothing, formula.pde.smoothing);
+  EXPECT_EQ(decoded.pde.modes, formula.pde.modes);
+  EXPECT_EQ(decoded.frame.scan_units, Units::Centimetres);
+  EXPECT_NEAR(decoded.frame.translation.z(), 300.25, 1e-4);
+}
+
+TEST(PdefGolden, SyntheticFilesDecodeToTheFormulasValues) {
+  const Result<Face> tiny = decode(slurp(golden("tiny.pdef")), "tiny.pdef");
+  ASSERT_TRUE(tiny) << tiny.error().to_string();
+  expect_synthetic_values(*tiny, synthetic_face(4, 4));
+
+  const Face formula = landmarked(synthetic_face());
+  const Result<Face> lossy = decode(slurp(golden("synthetic.pdef")), "synthetic.pdef");
+  ASSERT_TRUE(lossy) << lossy.error().to_string();
+  expect_synthetic_values(*lossy, formula);
+  EXPECT_EQ(lossy->name, "synthetic face");
+  ASSERT_EQ(lossy->landmarks.size(), 2U);
+  EXPECT_EQ(lossy->landmarks[0].name, "nose_tip");
+  // 0.125, 0.25, 18 and the rest: on the grid as rounded
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(lossy->landmarks[1].position(i),
+              std::round(formula.landmarks[1].position(i) / lossy->storage.step_mm) * lossy->storage.step_mm);
+
+  const Result<Face> exact = decode(slurp(golden("synthetic_lossless.pdef")), "synthetic_lossless.pdef");
+  ASSERT_TRUE(exact) << exact.error().to_string();
+  for (std::size_t j = 0; j < formula.curve_count(); ++j)
+    EXPECT_TRUE(exact->curves.samples[j] == formula.curves.samples[j]) << j;
+  EXPECT_EQ(exact->planes, formula.planes);
+  EXPECT_TRUE(exact->frame.rotation == formula.frame.rotation);
+  EXPECT_TRUE(exact->landmarks[0].position == formula.landmarks[0].position);
+}
+
+TEST(PdefGolden, SampleFilesDecodeToWhatTheyHeld) {
+  const nlohmann::json j = nlohmann::json::parse(slurp(golden("sample_10.json")));
+  const std::string lossy_bytes = slurp(golden("sample_10.pdef")),
+                    exact_bytes = slurp(golden("sample_10_lossless.pdef"));
+  EXPECT_EQ(lossy_bytes.size(), j["lossy_bytes"].get<std::size_t>());
+  EXPECT_EQ(exact_bytes.size(), j["lossless_bytes"].get<std::size_t>());
+  const Result<Face> lossy = decode(lossy_bytes, "sample_10.pdef"),
+                     exact = decode(exact_bytes, "sample_10_lossless.pdef");
+  ASSERT_TRUE(lossy && exact);
+  for (const Face* f : {&*lossy, &*exact}) {
+    EXPECT_EQ(f->curve_count(), j["curves"].get<std::size_t>());
+    EXPECT_EQ(f->sample_count(), j["samples"].get<std::size_t>());
+    EXPECT_EQ(*f->pde.modes, j["modes"].get<std::size_t>());
+    EXPECT_EQ(*f->pde.smoothing, j["smoothing"].get<double>());
+    EXPECT_EQ(f->pde.spacing, pde::Spacing::Physical);
+    EXPECT_EQ(f->frame.scan_units, Units::Millimetres);
+  }
+  EXPECT_EQ(exact->planes, j["planes_mm"].get<std::vector<double>>());
+  EXPECT_EQ(lossy->storage.step_mm, j["lossy_step_mm"].get<double>());
+  // The lossy file against the exact one: every sample within the maximum error, and the surfaces too.
+  for (std::size_t c = 0; c < exact->curve_count(); ++c)
+    EXPECT_LE((lossy->curves.samples[c] - exact->curves.samples[c]).rowwise().norm().maxCoeff(),
+              kDefaultMaxError)
+        << c;
+  EXPECT_EQ(lossy->filled, exact->filled);
+  std::size_t filled = 0;
+  for (const std::vector<bool>& curve : exact->filled)
+    filled += static_cast<std::size_t>(std::ranges::count(curve, true));
+  EXPECT_GT(filled, 0U); // the sample face has holes: the curves record where they were filled
+}
+
+// tests/tools/pdef_reader.py, a reader written from docs/pdef-format.md alone (Python, no code shared),
+// decodes the lossy golden files to the same values, bit for bit.
+TEST(PdefSpec, AnIndependentReaderAgrees) {
+  if (std::system("python3 --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3 not found";
+  const test::TempDir tmp;
+  for (const char* name : {"tiny.pdef", "synthetic.pdef", "sample_10.pdef"}) {
+    const std::filesystem::path out = tmp / "values.txt";
+    const std::string cmd = "python3 '" +
+                            (std::filesystem::path(PDEFACE_TEST_TOOLS) / "pdef_reader.py").string() + "' '" +
+                            golden(name).string() + "' > '" + out.string() + "'";
+    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
+    std::ifstream in(out);
+    std::string header, steps;
+    std::getline(in, header);
+    std::getline(in, steps);
+    const Face face = decode(slurp(golden(name)), name).value();
+    EXPECT_NE(
+        header.find(fmt::format("J {} K {} N {}", face.curve_count(), face.sample_count(), *face.pde.modes)),
+        std::string::npos)
+        << header;
+    std::size_t lines = 0;
+    for (std::size_t j = 0, k = 0; in >> j >> k; ++lines) {
+      double x = 0, y = 0, z = 0;
+      int filled = 0;
+      in >> x >> y >> z >> filled;
+      ASSERT_LT(j, face.curve_count());
+      ASSERT_LT(k, face.sample_count());
+      const auto row = static_cast<Eigen::Index>(k);
+      EXPECT_EQ(x, face.curves.samples[j](row, 0)) << name << " " << j << "," << k;
+      EXPECT_EQ(y, face.curves.samples[j](row, 1)) << name << " " << j << "," << k;
+      EXPECT_EQ(z, face.curves.samples[j](row, 2)) << name << " " << j << "," << k;
+      EXPECT_EQ(filled != 0, face.filled[j][k]) << name << " " << j << "," << k;
+    }
+    EXPECT_EQ(lines, face.curve_count() * face.sample_count()) << name;
+  }
+}
+
+} // namespace
+} // namespace pdeface::pdef
