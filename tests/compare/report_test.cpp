@@ -1,9 +1,13 @@
 // pdeface compare's library side: every variant of a scan measured on its decoded bytes, and the report's
 // documents. Heavy paths run on the sample face and on one real scan (facefuns_f18) only.
 
+#include "pdeface/align/frame.hpp"
+#include "pdeface/compare/encode.hpp"
 #include "pdeface/compare/report.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pdef/pdef.hpp"
 
 #include "gltf_validator.hpp"
 #include "pdeface_test.hpp"
@@ -157,6 +161,44 @@ TEST(Compare, BytesInTheReportAreTheSizesOfTheFilesWritten) {
   geometry.texcoords.clear();
   const std::string drc = formats::encode_mesh(geometry, "x.drc", {.draco_bits = 11}).value();
   EXPECT_EQ(find(s, "draco 11 bits")->bytes, drc.size());
+}
+
+// A PDE row is the `.pdef` file `pdeface encode` writes for the scan (its bytes, byte for byte), measured
+// on what `pdef::decode` of those bytes meshes to: the same measures from the decoded mesh, and a lossy row
+// measured apart from the lossless one.
+TEST(Compare, PdeRowsAreTheRealPdefFileMeasuredOnItsDecodedMesh) {
+  const ScanReport& s = sample_report().scans[0];
+  const Mesh scan = sample_face();
+  const align::Alignment alignment = align::align_scan(scan, std::nullopt, s.name).value();
+  const CanonicalScan canonical = canonical_scan(scan, alignment);
+  const FaceYardstick yardstick =
+      FaceYardstick::make(canonical.mesh, extract_profiles(canonical).value()).value();
+  std::array<double, 2> to_scan_mean{};
+  for (bool lossless : {false, true}) {
+    const Variant* v = find(s, lossless ? "pde 10 % lossless" : "pde 10 % lossy");
+    ASSERT_TRUE(v && v->fidelity) << (v ? v->failure : "missing");
+    SCOPED_TRACE(v->name);
+    const EncodeOutcome file =
+        encode_request(scan, {.profiles = {.ratio = 0.1}, .encoding = {.lossless = lossless}}).value();
+    EXPECT_EQ(v->bytes, file.encoded.bytes.size());
+    EXPECT_TRUE(v->encoded == file.encoded.bytes); // (not printed: binary)
+    EXPECT_TRUE(v->encoded.starts_with(pdef::kMagic));
+    EXPECT_GT(v->decode_ms, 0.0);
+
+    const Mesh decoded = pdef::to_mesh(pdef::decode(v->encoded).value()).value();
+    EXPECT_EQ(v->vertices, decoded.vertex_count());
+    EXPECT_EQ(v->triangles, decoded.triangle_count());
+    const MeshFidelity f = yardstick.measure(align::to_canonical(decoded, canonical.frame)).value();
+    EXPECT_DOUBLE_EQ(v->fidelity->coverage.distance.mean, f.coverage.distance.mean);
+    EXPECT_DOUBLE_EQ(v->fidelity->to_scan.mean, f.to_scan.mean);
+    EXPECT_DOUBLE_EQ(v->fidelity->to_scan.max, f.to_scan.max);
+    EXPECT_DOUBLE_EQ(v->fidelity->mean_profile_error, f.mean_profile_error);
+    to_scan_mean[lossless ? 1 : 0] = v->fidelity->to_scan.mean;
+  }
+  // The lossy file is smaller and its surface is not the lossless one's, within the default error.
+  EXPECT_LT(find(s, "pde 10 % lossy")->bytes, find(s, "pde 10 % lossless")->bytes);
+  EXPECT_NE(to_scan_mean[0], to_scan_mean[1]);
+  EXPECT_NEAR(to_scan_mean[0], to_scan_mean[1], pdef::kDefaultMaxError);
 }
 
 TEST(Compare, DocumentsHoldEveryRow) {

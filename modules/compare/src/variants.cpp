@@ -1,6 +1,8 @@
 #include "variants.hpp"
 
-#include "pdeface/compare/reconstruct.hpp"
+#include "pdeface/compare/encode.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pdef/pdef.hpp"
 
 #include <fmt/format.h>
 #include <meshoptimizer.h>
@@ -204,38 +206,27 @@ Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget, c
   return *std::move(best);
 }
 
-// TODO(pdef): the real codec (issue 11) replaces this body: `compare::encode_request`-like slicing at
-// `ratio`, `pdef::encode` to bytes, `pdef::decode` of those bytes and the decoded face's mesh in the scan's
-// frame. Until it lands, the surface comes from `reconstruct` and the bytes are a TEMPORARY stand-in:
-// the curves' points as float32 (lossless) or 16-bit integers over their bounding box (lossy), which
-// is not the `.pdef` format and not what it will weigh.
 Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio, bool lossless,
                            pde::Scheme scheme, std::string_view source) {
+  EncodeRequest request;
+  request.profiles.ratio = ratio;
+  request.encoding.lossless = lossless;
+  request.source = source;
+  request.pde.scheme = scheme;
   Encoded e;
   Clock::time_point start = Clock::now();
-  ReconstructOptions options{.profiles = {.ratio = ratio}};
-  options.pde.scheme = scheme;
-  Result<Reconstruction> r = reconstruct(scan, alignment, options, source);
-  if (!r) return std::move(r).error();
-  Box box;
-  for (const slice::ProfileCurve& c : r->profiles.curves)
-    for (const Vec3& p : c.points)
-      box.extend(p);
-  for (const slice::ProfileCurve& c : r->profiles.curves)
-    for (const Vec3& p : c.points)
-      for (int axis = 0; axis < 3; ++axis) {
-        if (lossless) {
-          const auto v = static_cast<float>(p[axis]);
-          e.bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
-        } else {
-          const double span = std::max(box.size()[axis], 1e-9);
-          const auto q = static_cast<std::uint16_t>(std::lround(65535.0 * (p[axis] - box.min[axis]) / span));
-          e.bytes.append(reinterpret_cast<const char*>(&q), sizeof q);
-        }
-      }
-  e.decoded = std::move(r->scan);
+  Result<EncodeOutcome> made = encode_aligned(scan, alignment, request);
+  if (!made) return std::move(made).error();
+  e.bytes = std::move(made->encoded.bytes);
   e.encode_ms = milliseconds_since(start);
-  e.decode_ms = 0.0; // TEMPORARY: solving is inside `reconstruct` above
+  // What a reader of the file does: parse its bytes, solve the surface and mesh it in the scan's frame.
+  start = Clock::now();
+  Result<pdef::Face> face = pdef::decode(e.bytes, source);
+  if (!face) return std::move(face).error();
+  Result<Mesh> mesh = pdef::to_mesh(*face, std::nullopt, source);
+  if (!mesh) return std::move(mesh).error();
+  e.decode_ms = milliseconds_since(start);
+  e.decoded = *std::move(mesh);
   return e;
 }
 

@@ -57,8 +57,9 @@ struct Decimated {
                                                    const CompareOptions& options,
                                                    const std::function<double(const Mesh&)>& error);
 
-//! The seam to the `.pdef` codec: the aligned scan sliced at `ratio` and written as `.pdef` bytes
-//! (lossy or lossless, `scheme`), and those bytes decoded back into a mesh in the scan's frame.
+//! The `.pdef` file of the aligned scan sliced at `ratio` (`encode_aligned`: lossy within the default error,
+//! or lossless; `scheme`), and what a reader makes of its bytes: `pdef::decode`, then the surface solved and
+//! meshed in the scan's frame at the default grid (`pdef::to_mesh`). Encoding and decoding timed apart.
 [[nodiscard]] Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio,
                                          bool lossless, pde::Scheme scheme, std::string_view source);
 
