@@ -233,10 +233,9 @@ TEST(SharedFacesPose, XUpAndUpsideDown) {
 TEST(SharedFacesPose, APedestalCornerDoesNotHideTheFace) {
   PDEFACE_FACE_OR_SKIP(path, "bust_man_wreath.obj");
   const Mesh bust = load(path);
-  const Eigen::Matrix3d r{
-      {-0.7795631764608477, 0.4252354807450397, 0.45984349492170484},
-      {-0.05259256718159325, 0.6871583206664327, -0.7246015899900701},
-      {-0.6241115892078296, -0.5890570670609282, -0.5133190976011455}};
+  const Eigen::Matrix3d r{{-0.7795631764608477, 0.4252354807450397, 0.45984349492170484},
+                          {-0.05259256718159325, 0.6871583206664327, -0.7246015899900701},
+                          {-0.6241115892078296, -0.5890570670609282, -0.5133190976011455}};
   const Vec3 t(404.8048268374896, 371.44065598547405, -300.0811499569935);
   // Turned and moved, written as OBJ text with 9 digits and read back, as a user's file would be.
   std::string text;
