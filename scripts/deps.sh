@@ -6,7 +6,8 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev libdraco-dev draco
   libtinyobjloader-dev libfast-float-dev libstb-dev nlohmann-json3-dev libnanoflann-dev
-  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev libzstd-dev zlib1g-dev
+  libmeshoptimizer-dev zlib1g-dev libzstd-dev
+  libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
 )
 # The tests also run the Khronos glTF validator on node (from Debian unless node is already there).
 if [[ "${1:-}" == "--test" ]] && ! { command -v node && command -v npm; } >/dev/null; then

@@ -25,9 +25,9 @@ int run(int argc, char** argv) {
   });
 
   int status = 0;
-  constexpr std::array<Command, 9> kCommands{&info_command,  &convert_command,  &sample_command,
-                                             &align_command, &profiles_command, &reconstruct_command,
-                                             &table_command, &encode_command,   &decode_command};
+  constexpr std::array<Command, 10> kCommands{
+      &info_command,        &convert_command, &sample_command,  &align_command,  &profiles_command,
+      &reconstruct_command, &table_command,   &compare_command, &encode_command, &decode_command};
   for (Command add : kCommands)
     add(app, status);
   try {

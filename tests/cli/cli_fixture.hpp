@@ -51,6 +51,14 @@ protected:
     const int status = std::system(cmd.c_str());
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, slurp(out), slurp(err)};
   }
+  // The same, run from the folder of outputs (for commands that write into the current folder).
+  Outcome run_in_work(const std::vector<std::string>& args) {
+    const std::filesystem::path previous = std::filesystem::current_path();
+    std::filesystem::current_path(work_.path());
+    Outcome r = run(args);
+    std::filesystem::current_path(previous);
+    return r;
+  }
   std::string path(std::string_view name) const { return (work_ / name).string(); }
   // `command` + `args` fails on the data: exit 1, one line on stderr naming `file` and saying `expect`.
   void expect_data_error(std::vector<std::string> command, const std::vector<std::string>& args,

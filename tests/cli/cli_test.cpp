@@ -25,8 +25,8 @@ TEST_F(Cli, VersionAndHelp) {
   Outcome v = run({"--version"});
   EXPECT_EQ(v.exit_code, 0);
   EXPECT_NE(v.out.find("pdeface 0."), std::string::npos);
-  for (const char* cmd :
-       {"info", "convert", "sample", "align", "profiles", "reconstruct", "table", "encode", "decode"}) {
+  for (const char* cmd : {"info", "convert", "sample", "align", "profiles", "reconstruct", "table", "compare",
+                          "encode", "decode"}) {
     Outcome h = run({cmd, "--help"});
     EXPECT_EQ(h.exit_code, 0) << cmd;
     EXPECT_NE(h.out.find("Usage"), std::string::npos) << cmd;
@@ -332,6 +332,51 @@ TEST_F(Cli, TableFailsOnAnyBadScanAndWritesNothing) {
   EXPECT_EQ(files(), before);
   EXPECT_EQ(run({"table", path("a.ply"), "--ratios", "0.7"}).exit_code, 2);
   EXPECT_EQ(run({"table", path("a.ply"), "--schemes", "spline,nurbs"}).exit_code, 2);
+}
+
+TEST_F(Cli, CompareWithNoInputIsTheMainJob) {
+  const Outcome r = run_in_work({"compare"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("sample face: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("draco 11 bits"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("pde 10 % lossy"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("error"), std::string::npos) << r.err;
+  const auto dir = work_ / "pdeface-report";
+  for (const char* name : {"report.md", "report.json", "report.csv", "rd.svg", "report.html"})
+    EXPECT_GT(std::filesystem::file_size(dir / name), 1000U) << name;
+  std::size_t glbs = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir))
+    glbs += entry.path().extension() == ".glb" ? 1 : 0;
+  EXPECT_EQ(glbs, 3U);
+  const std::string md = slurp(dir / "report.md");
+  EXPECT_TRUE(md.starts_with("# pdeface compare")) << md.substr(0, 200);
+  EXPECT_NE(md.find("| decimate+draco 1024 B |"), std::string::npos);
+  const auto j = nlohmann::json::parse(slurp(dir / "report.json"));
+  EXPECT_EQ(j["scans"][0]["name"], "sample face");
+}
+
+TEST_F(Cli, CompareBatchReportsABadScanAndCompletesTheOthers) {
+  std::filesystem::create_directories(work_ / "scans");
+  ASSERT_EQ(run({"sample", path("scans/a.ply")}).exit_code, 0);
+  ASSERT_EQ(run({"sample", "--seed", "3", path("scans/b.obj")}).exit_code, 0);
+  std::ofstream(work_ / "scans" / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 3\n";
+  std::ofstream(work_ / "scans" / "notes.txt") << "not a scan\n";
+  const Outcome r = run({"compare", path("scans"), "--out", path("rep"), "--draco-bits", "11", "--budgets",
+                         "2048", "--ratios", "0.1", "--lossy-only", "--decimate-bits", "10,11,12"});
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_NE(r.err.find("error: " + path("scans/broken.ply")), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("3 scans (1 failed)"), std::string::npos) << r.out;
+  const std::string md = slurp(work_ / "rep" / "report.md");
+  EXPECT_NE(md.find("## broken.ply: failed"), std::string::npos) << md;
+  EXPECT_NE(md.find("## a.ply: "), std::string::npos) << md;
+  EXPECT_NE(md.find("## b.obj: "), std::string::npos) << md;
+  EXPECT_EQ(md.find("notes.txt"), std::string::npos) << md;
+  const std::string csv = slurp(work_ / "rep" / "report.csv");
+  EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1) + 1U) << csv; // 2 scans x rows, the failed scan's line
+
+  EXPECT_EQ(run({"compare", "--ratios", "0.8"}).exit_code, 2);
+  EXPECT_EQ(run({"compare", path("absent.ply")}).exit_code, 2);
+  EXPECT_EQ(run({"compare", "--draco-bits", "30"}).exit_code, 2);
 }
 
 } // namespace

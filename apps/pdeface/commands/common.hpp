@@ -36,6 +36,7 @@ void align_command(CLI::App& app, int& status);
 void profiles_command(CLI::App& app, int& status);
 void reconstruct_command(CLI::App& app, int& status);
 void table_command(CLI::App& app, int& status);
+void compare_command(CLI::App& app, int& status);
 void encode_command(CLI::App& app, int& status);
 void decode_command(CLI::App& app, int& status);
 

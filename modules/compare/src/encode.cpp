@@ -24,7 +24,12 @@ pdef::Face to_face(const slice::ProfileSet& profiles, const pde::Surface& surfac
 Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& request) {
   Result<align::Alignment> alignment = align::align_from(scan, request.landmarks, request.source);
   if (!alignment) return alignment.error();
-  const CanonicalScan canonical = canonical_scan(scan, *alignment);
+  return encode_aligned(scan, *std::move(alignment), request);
+}
+
+Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignment,
+                                     const EncodeRequest& request) {
+  const CanonicalScan canonical = canonical_scan(scan, alignment);
   Result<slice::ProfileSet> profiles = extract_profiles(canonical, request.profiles);
   auto named = [&](Error e) {
     if (e.source.empty()) e.source = request.source;
@@ -33,7 +38,7 @@ Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& requ
   if (!profiles) return named(std::move(profiles).error());
   Result<pde::Surface> surface = surface_from(*profiles, request.pde, request.source);
   if (!surface) return named(std::move(surface).error());
-  EncodeOutcome out{*std::move(alignment), *std::move(profiles), {}, {}};
+  EncodeOutcome out{std::move(alignment), *std::move(profiles), {}, {}};
   out.face = to_face(out.profiles, *surface, request.pde);
   out.face.name = request.name;
   if (request.store_landmarks)

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <iterator>
 #include <limits>
+#include <span>
 
 namespace pdeface::compare {
 
@@ -87,36 +88,67 @@ FaceRegion face_region(const slice::ProfileSet& profiles, double depth_margin_mm
 
 namespace {
 
-Result<Coverage> coverage_of(const slice::FaceMask& mask, const Mesh& reconstruction, const FrontView& view,
-                             const FidelityOptions& options) {
-  if (view.columns.empty() || reconstruction.positions.empty())
-    return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
-  // The mask is a region of the front view, so its share is measured per unit of that view's area: the
-  // scan's front-most surface at every cell of a grid over the mask. Surface that turns away from the
-  // viewer (the cheeks' sides, under the chin) counts for the area it shows, not for its own area, and
-  // what the front hides (the inside of the mouth and nostrils) is not the face.
-  const metrics::SurfaceDistance to_reconstruction(reconstruction);
+// The scan's face as the coverage measures it: the mask is a region of the front view, so its share is
+// measured per unit of that view's area, at the scan's front-most surface on a grid over the mask. Surface
+// that turns away from the viewer (the cheeks' sides, under the chin) counts for the area it shows, not
+// for its own area, and what the front hides (the inside of the mouth and nostrils) is not the face.
+std::vector<Vec3> mask_samples(const slice::FaceMask& mask, const FrontView& view) {
+  std::vector<Vec3> out;
   const double step = view.step;
-  std::vector<double> distances;
-  std::size_t near = 0;
   for (std::size_t k = 0; k < view.columns.size(); ++k) {
-    const double x = view.x_of(k);
-    const std::optional<std::array<double, 2>> h = mask.heights_at(x);
+    const std::optional<std::array<double, 2>> h = mask.heights_at(view.x_of(k));
     if (!h) continue;
-    for (double y = std::ceil((*h)[0] / step) * step; y <= (*h)[1]; y += step) {
-      const std::optional<Vec3> p = slice::section_at(view.columns[k], {}, y);
-      if (!p || !mask.contains(*p)) continue;
-      const double d = to_reconstruction.distance(*p);
-      distances.push_back(d);
-      if (d <= options.covered_within_mm) ++near;
-    }
+    for (double y = std::ceil((*h)[0] / step) * step; y <= (*h)[1]; y += step)
+      if (const std::optional<Vec3> p = slice::section_at(view.columns[k], {}, y); p && mask.contains(*p))
+        out.push_back(*p);
   }
-  if (distances.empty())
+  return out;
+}
+
+Result<Coverage> coverage_from(std::span<const Vec3> samples, const Mesh& reconstruction,
+                               const FidelityOptions& options) {
+  if (reconstruction.positions.empty())
+    return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
+  if (samples.empty())
     return make_error(ErrorCode::InvalidArgument, "coverage: the scan has no surface in the face mask");
+  const metrics::SurfaceDistance to_reconstruction(reconstruction);
+  std::vector<double> distances;
+  distances.reserve(samples.size());
+  std::size_t near = 0;
+  for (const Vec3& p : samples) {
+    const double d = to_reconstruction.distance(p);
+    distances.push_back(d);
+    if (d <= options.covered_within_mm) ++near;
+  }
   Coverage c;
   c.share = static_cast<double>(near) / static_cast<double>(distances.size());
   c.distance = metrics::statistics(std::move(distances));
   return c;
+}
+
+// The paper's profile error of `reconstruction` on each evaluation plane: its front-most cut within the
+// original profile's extent and outside its gaps, against the original cut into pieces at its gaps. A
+// reconstruction that falls short of the range is measured where it exists; NaN where it has none.
+std::array<double, 4> evaluation_errors(std::span<const slice::EvaluationProfile> evaluation,
+                                        const Mesh& reconstruction) {
+  std::vector<slice::Plane> planes;
+  std::vector<slice::ProfileAxes> axes;
+  for (const slice::EvaluationProfile& e : evaluation) {
+    planes.push_back(e.plane);
+    axes.push_back({e.along, Vec3::UnitZ()});
+  }
+  const std::vector<slice::Section> cuts = slice::sections(reconstruction, planes, axes);
+  std::array<double, 4> errors{};
+  errors.fill(std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t i = 0; i < std::min<std::size_t>(4, evaluation.size()); ++i) {
+    const slice::EvaluationProfile& e = evaluation[i];
+    if (e.points.empty()) continue;
+    const double lo = e.along.dot(e.points.front()), hi = e.along.dot(e.points.back());
+    const metrics::Polyline rebuilt = within(cuts[i].points, e.along, lo, hi, e.gaps);
+    if (!rebuilt.empty())
+      errors[i] = metrics::profile_error(std::span(&rebuilt, 1), pieces(e.points, e.along, e.gaps));
+  }
+  return errors;
 }
 
 } // namespace
@@ -124,8 +156,8 @@ Result<Coverage> coverage_of(const slice::FaceMask& mask, const Mesh& reconstruc
 Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask, const Mesh& reconstruction,
                                   const FidelityOptions& options) {
   if (scan.positions.empty()) return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
-  return coverage_of(mask, reconstruction, front_view(scan, mask.half_width, options.sample_spacing_mm),
-                     options);
+  const FrontView view = front_view(scan, mask.half_width, options.sample_spacing_mm);
+  return coverage_from(mask_samples(mask, view), reconstruction, options);
 }
 
 Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& profiles,
@@ -133,28 +165,17 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
   if (profiles.evaluation.size() != 4)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("expected 4 evaluation profiles, got {}", profiles.evaluation.size()));
-  // The reconstruction cut by the same 4 planes, its front-most part within each original's extent and
-  // outside its gaps. A reconstruction that falls short of the range is measured where it exists (the
-  // surface distance sees what is missing).
-  std::vector<slice::Plane> planes;
-  std::vector<slice::ProfileAxes> axes;
-  for (const slice::EvaluationProfile& e : profiles.evaluation) {
-    planes.push_back(e.plane);
-    axes.push_back({e.along, Vec3::UnitZ()});
-  }
-  const std::vector<slice::Section> evaluation = slice::sections(reconstruction, planes, axes);
   Fidelity f;
-  for (std::size_t i = 0; i < 4; ++i) {
-    const slice::EvaluationProfile& e = profiles.evaluation[i];
+  for (const slice::EvaluationProfile& e : profiles.evaluation)
     if (e.points.empty())
       return make_error(ErrorCode::InvalidArgument, fmt::format("the {} profile is empty", e.name));
-    const double lo = e.along.dot(e.points.front()), hi = e.along.dot(e.points.back());
-    const metrics::Polyline rebuilt = within(evaluation[i].points, e.along, lo, hi, e.gaps);
-    if (rebuilt.empty())
-      return make_error(
-          ErrorCode::NoFace,
-          fmt::format("the reconstruction has no surface on the {} evaluation profile", e.name));
-    f.profile_error[i] = metrics::profile_error(std::span(&rebuilt, 1), pieces(e.points, e.along, e.gaps));
+  f.profile_error = evaluation_errors(profiles.evaluation, reconstruction);
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (std::isnan(f.profile_error[i]))
+      return make_error(ErrorCode::NoFace,
+                        fmt::format("the reconstruction has no surface on the {} evaluation "
+                                    "profile",
+                                    profiles.evaluation[i].name));
     f.mean_profile_error += f.profile_error[i] / 4.0;
   }
 
@@ -189,10 +210,71 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
            [&](const Vec3& p) { return region.contains(p) && !region.curves.filled_at(p.x(), p.y()); }});
   if (!distance) return std::move(distance).error();
   f.surface = *distance;
-  Result<Coverage> coverage = coverage_of(profiles.mask, reconstruction, view, options);
+  Result<Coverage> coverage = coverage_from(mask_samples(profiles.mask, view), reconstruction, options);
   if (!coverage) return std::move(coverage).error();
   f.coverage = *coverage;
   return f;
 }
+
+struct FaceYardstick::State {
+  State(const Mesh& canonical, const slice::ProfileSet& profiles, const FidelityOptions& fidelity)
+      : scan(canonical), mask(profiles.mask), evaluation(profiles.evaluation), options(fidelity),
+        view(front_view(scan, mask.half_width + 1.0, options.sample_spacing_mm)),
+        samples(mask_samples(mask, view)), to_scan(scan) {}
+  Mesh scan;
+  slice::FaceMask mask;
+  std::vector<slice::EvaluationProfile> evaluation;
+  FidelityOptions options;
+  FrontView view;
+  std::vector<Vec3> samples;        // the scan's face: front-most samples inside the mask
+  metrics::SurfaceDistance to_scan; // over `scan`, which lives as long as this
+};
+
+Result<FaceYardstick> FaceYardstick::make(const Mesh& scan, const slice::ProfileSet& profiles,
+                                          const FidelityOptions& options) {
+  if (scan.positions.empty()) return make_error(ErrorCode::InvalidArgument, "the scan is empty");
+  if (profiles.evaluation.size() != 4)
+    return make_error(ErrorCode::InvalidArgument,
+                      fmt::format("expected 4 evaluation profiles, got {}", profiles.evaluation.size()));
+  auto state = std::make_shared<const State>(scan, profiles, options);
+  if (state->samples.empty())
+    return make_error(ErrorCode::InvalidArgument, "coverage: no sample of the scan lies in the face mask");
+  return FaceYardstick(std::move(state));
+}
+
+Result<MeshFidelity> FaceYardstick::measure(const Mesh& mesh) const {
+  const State& s = *state_;
+  Result<Coverage> coverage = coverage_from(s.samples, mesh, s.options);
+  if (!coverage) return std::move(coverage).error();
+  MeshFidelity f{.coverage = *coverage};
+  std::vector<double> distances;
+  for (const Vec3& p : metrics::sample_surface(mesh, s.options.sample_spacing_mm))
+    if (s.mask.contains(p) && s.view.front(p.x(), p.y())) distances.push_back(s.to_scan.distance(p));
+  f.to_scan = metrics::statistics(std::move(distances));
+  if (f.to_scan.samples == 0) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    f.to_scan.mean = f.to_scan.rms = f.to_scan.p95 = f.to_scan.max = nan;
+  }
+  f.profile_error = evaluation_errors(s.evaluation, mesh);
+  f.mean_profile_error =
+      (f.profile_error[0] + f.profile_error[1] + f.profile_error[2] + f.profile_error[3]) / 4;
+  return f;
+}
+
+double FaceYardstick::quick_mask_mean(const Mesh& mesh, std::size_t stride) const {
+  const State& s = *state_;
+  if (mesh.positions.empty()) return std::numeric_limits<double>::infinity();
+  const metrics::SurfaceDistance to_mesh(mesh);
+  stride = std::max<std::size_t>(stride, 1);
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = stride / 2; i < s.samples.size(); i += stride, ++n)
+    sum += to_mesh.distance(s.samples[i]);
+  return n ? sum / static_cast<double>(n) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double FaceYardstick::distance_to_scan(const Vec3& p) const { return state_->to_scan.distance(p); }
+
+const slice::FaceMask& FaceYardstick::mask() const { return state_->mask; }
 
 } // namespace pdeface::compare

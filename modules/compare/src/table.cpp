@@ -2,13 +2,13 @@
 
 #include "pdeface/compare/reconstruct.hpp"
 
+#include "parallel.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
-#include <thread>
 
 namespace pdeface::compare {
 namespace {
@@ -77,21 +77,10 @@ Result<std::vector<TableRow>> table_rows(const Mesh& scan, const align::Alignmen
   }
   // Every row is independent (solving, meshing and measuring are pure): spread them over the cores.
   std::vector<TableRow> rows(sets.size() * options.schemes.size());
-  std::atomic<std::size_t> next{0};
-  const auto work = [&] {
-    for (std::size_t i = next++; i < rows.size(); i = next++) {
-      const std::size_t r = i / options.schemes.size(), s = i % options.schemes.size();
-      rows[i] = measure_row(canonical.mesh, sets[r], options.ratios[r], options.schemes[s], options, source);
-    }
-  };
-  {
-    const std::size_t threads =
-        std::min<std::size_t>(rows.size(), std::max(1U, std::thread::hardware_concurrency()));
-    std::vector<std::jthread> workers(threads > 1 ? threads - 1 : 0);
-    for (std::jthread& w : workers)
-      w = std::jthread(work);
-    work();
-  }
+  detail::parallel_for(rows.size(), 0, [&](std::size_t i) {
+    const std::size_t r = i / options.schemes.size(), s = i % options.schemes.size();
+    rows[i] = measure_row(canonical.mesh, sets[r], options.ratios[r], options.schemes[s], options, source);
+  });
   return rows;
 }
 

@@ -41,8 +41,13 @@ struct EncodeOutcome {
   pdef::Encoded encoded;
 };
 
-//! `pdeface encode`: aligned (landmarks detected or from a file), sliced, the surface's options resolved,
-//! encoded. Errors: those of each stage, naming `request.source`.
+//! `pdeface encode`: aligned (landmarks detected or from a file), then `encode_aligned`. Errors: those of
+//! each stage, naming `request.source`.
 [[nodiscard]] Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& request);
+
+//! The same with the scan's `alignment` already made (`request.landmarks` unused): sliced, the surface's
+//! options resolved, encoded (`pdeface compare` aligns a scan once for all its variants).
+[[nodiscard]] Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignment,
+                                                   const EncodeRequest& request);
 
 } // namespace pdeface::compare

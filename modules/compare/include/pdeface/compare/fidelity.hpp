@@ -9,6 +9,7 @@
 #include "pdeface/slice/profiles.hpp"
 
 #include <array>
+#include <memory>
 
 namespace pdeface::compare {
 
@@ -70,5 +71,44 @@ struct FaceRegion {
 [[nodiscard]] Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& profiles,
                                                 const Mesh& reconstruction,
                                                 const FidelityOptions& options = {});
+
+//! How close any mesh claiming to be a scan is to it (a decoded Draco file, a decimated mesh, a PDE surface),
+//! judged on the scan's face mask so that every kind of result meets the same yardstick (canonical frame,
+//! mm).
+struct MeshFidelity {
+  Coverage coverage; //!< the scan's face (mask) → the mesh: share within `covered_within_mm`, distances
+  //! The mesh → the scan: the mesh's samples inside the mask where the scan has surface (seen from the
+  //! front), so that a hole the mesh fills and the scan lacks is not counted against it.
+  metrics::DistanceStats to_scan;
+  //! The paper's profile error on the 4 evaluation profiles (`Fidelity::profile_error`); NaN on a plane
+  //! where the mesh has no surface.
+  std::array<double, 4> profile_error{};
+  double mean_profile_error = 0.0; //!< their mean (NaN when one is)
+};
+
+//! The scan's side of `MeshFidelity`, made once and shared by every mesh measured against it: the scan's
+//! front-most samples inside the face mask, the scan's distance hierarchy and what it shows from the front,
+//! and the evaluation profiles. A class because it caches that work; copies share it. Thread-safe.
+class FaceYardstick {
+public:
+  //! `scan` (canonical frame, mm) with its profiles (`profiles.mask`, `profiles.evaluation`). Errors:
+  //! `InvalidArgument` when no sample of the scan lies in the mask or the evaluation profiles are not 4.
+  [[nodiscard]] static Result<FaceYardstick> make(const Mesh& scan, const slice::ProfileSet& profiles,
+                                                  const FidelityOptions& options = {});
+
+  //! Every measure of `mesh` (canonical frame, mm). Errors: `InvalidArgument` for an empty mesh.
+  [[nodiscard]] Result<MeshFidelity> measure(const Mesh& mesh) const;
+  //! The mean scan → `mesh` distance in the mask over every `stride`-th sample: a quick, unbiased
+  //! estimate of `measure(mesh)->coverage.distance.mean` for searches (mm).
+  [[nodiscard]] double quick_mask_mean(const Mesh& mesh, std::size_t stride = 8) const;
+  //! The distance from `p` to the scan's surface (mm).
+  [[nodiscard]] double distance_to_scan(const Vec3& p) const;
+  [[nodiscard]] const slice::FaceMask& mask() const;
+
+private:
+  struct State;
+  explicit FaceYardstick(std::shared_ptr<const State> state) : state_(std::move(state)) {}
+  std::shared_ptr<const State> state_;
+};
 
 } // namespace pdeface::compare

@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include <functional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -23,6 +24,13 @@ struct FrontViewBox {
 //! front-most depth map, placed in SVG user units = mm with y flipped (SVG y = −canonical y), so that
 //! curves drawn as (x, −y) lie on it.
 [[nodiscard]] std::string front_view_image(const Mesh& canonical, const FrontViewBox& box = {});
+
+//! The colour (linear RGB in [0, 1]) of the surface point a pixel shows.
+using Colouring = std::function<Eigen::Vector3f(const Vec3&)>;
+//! The same view, each pixel in `colour` of the front-most surface point it shows (canonical frame), shaded:
+//! a map of any per-point measure (an error heat map) on the surface.
+[[nodiscard]] std::string front_view_image(const Mesh& canonical, const FrontViewBox& box,
+                                           const Colouring& colour);
 
 //! `text` with the characters SVG/XML reserve escaped.
 [[nodiscard]] std::string escape(std::string_view text);
