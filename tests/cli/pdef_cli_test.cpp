@@ -9,13 +9,8 @@
 
 #include <fstream>
 
-namespace pdeface {
+namespace pdeface::test {
 namespace {
-
-using test::Cli;
-using test::lines;
-using test::Outcome;
-using test::slurp;
 
 class PdefCli : public Cli {
 protected:
@@ -139,4 +134,4 @@ TEST_F(PdefCli, WhatIsNotAFaceOrNotAFileIsRefused) {
 }
 
 } // namespace
-} // namespace pdeface
+} // namespace pdeface::test

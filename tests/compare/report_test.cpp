@@ -46,13 +46,7 @@ const Variant* find(const ScanReport& s, std::string_view name) {
   return it == s.variants.end() ? nullptr : &*it;
 }
 
-std::vector<std::string> split(const std::string& text, char by) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, by);)
-    out.push_back(part);
-  return out;
-}
+using test::split;
 
 // Writes the report's files under `dir` (making its folders) and returns them.
 std::vector<OutputFile> write(const Report& report, const fs::path& dir) {

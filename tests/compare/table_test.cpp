@@ -22,13 +22,7 @@ const std::vector<TableRow>& rows() {
   return r;
 }
 
-std::vector<std::string> split(const std::string& text, char by) {
-  std::vector<std::string> out;
-  std::stringstream in(text);
-  for (std::string part; std::getline(in, part, by);)
-    out.push_back(part);
-  return out;
-}
+using test::split;
 
 TEST(Table, OneRowPerRatioAndScheme) {
   ASSERT_EQ(rows().size(), 9U);

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <optional>
 #include <random>
+#include <sstream>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -114,6 +115,15 @@ inline std::string test_name(std::string_view file) {
 struct FileParamName {
   template <class Info> std::string operator()(const Info& info) const { return test_name(info.param); }
 };
+
+//! `text` cut at every `by` (an empty last part dropped, as std::getline does).
+inline std::vector<std::string> split(const std::string& text, char by) {
+  std::vector<std::string> out;
+  std::stringstream in(text);
+  for (std::string part; std::getline(in, part, by);)
+    out.push_back(part);
+  return out;
+}
 
 } // namespace pdeface::test
 

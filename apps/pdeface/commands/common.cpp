@@ -24,14 +24,20 @@ Result<formats::LoadedMesh> read_scan(const std::filesystem::path& in) {
   return scan;
 }
 
+Result<align::LandmarkSource> landmark_source(const std::filesystem::path& file) {
+  if (file.empty()) return align::LandmarkSource{};
+  Result<std::string> bytes = read_file(file);
+  if (!bytes) return bytes.error();
+  return align::LandmarkSource{*std::move(bytes), file.string()};
+}
+
 Result<ScanAndLandmarks> read_scan_and_landmarks(const std::filesystem::path& in,
                                                  const std::filesystem::path& landmarks) {
   Result<formats::LoadedMesh> scan = read_scan(in);
   if (!scan) return scan.error();
-  if (landmarks.empty()) return ScanAndLandmarks{*std::move(scan), {}};
-  Result<std::string> bytes = read_file(landmarks);
-  if (!bytes) return bytes.error();
-  return ScanAndLandmarks{*std::move(scan), {*std::move(bytes), landmarks.string()}};
+  Result<align::LandmarkSource> source = landmark_source(landmarks);
+  if (!source) return source.error();
+  return ScanAndLandmarks{*std::move(scan), *std::move(source)};
 }
 
 Result<void> write_outputs(std::span<const OutputFile> files) { return write_files_atomic(files); }

@@ -48,6 +48,9 @@ int fail(const Error& error);
 //! A mesh read from a file, its notes printed.
 [[nodiscard]] Result<formats::LoadedMesh> read_scan(const std::filesystem::path& in);
 
+//! The bytes of the landmark file `file` (none when it is empty: detect them).
+[[nodiscard]] Result<align::LandmarkSource> landmark_source(const std::filesystem::path& file);
+
 //! A scan and the landmarks it is to be aligned by.
 struct ScanAndLandmarks {
   formats::LoadedMesh scan;
