@@ -3,11 +3,12 @@
 #include "pdeface/compare/table.hpp"
 #include "pdeface/core/sample_face.hpp"
 
+#include "pdeface_test.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 namespace pdeface::compare {
 namespace {
