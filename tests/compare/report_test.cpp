@@ -233,6 +233,27 @@ TEST(Compare, DocumentsHoldEveryRow) {
   EXPECT_EQ(page.find("src=\"http"), std::string::npos);             // self-contained
 }
 
+// A variant no scan could make (a budget the whole scan fits under) says why in its scan's table, with no
+// numbers, and has no row in the summary.
+TEST(Compare, AVariantNoScanMadeSaysWhyAndHasNoSummaryRow) {
+  Report r = sample_report();
+  ASSERT_FALSE(r.scans.empty());
+  r.scans[0].variants.push_back({.method = Method::DecimateDraco,
+                                 .name = "decimate+draco 1048576 B",
+                                 .budget = 1048576,
+                                 .failure = "nothing to decimate"});
+  const std::string md = report_markdown(r);
+  const std::size_t scans = md.find("\n## ", md.find("## Summary") + 1);
+  ASSERT_NE(scans, std::string::npos);
+  EXPECT_EQ(md.substr(0, scans).find("decimate+draco 1048576 B"), std::string::npos) << md;
+  const std::size_t row = md.find("| decimate+draco 1048576 B |", scans);
+  ASSERT_NE(row, std::string::npos) << md;
+  const std::string line = md.substr(row, md.find('\n', row) - row);
+  EXPECT_NE(line.find("failed: nothing to decimate"), std::string::npos) << line;
+  EXPECT_EQ(line.find("inf"), std::string::npos) << line;
+  EXPECT_EQ(line.find("| 0 |"), std::string::npos) << line;
+}
+
 TEST(Compare, HeatMapGlbsPassTheValidator) {
   const Report& r = sample_report();
   const ScanReport& s = r.scans[0];

@@ -212,14 +212,20 @@ std::string rd_svg(const Report& report) {
       doc += fmt::format("<polyline fill=\"none\" stroke=\"{}\" stroke-width=\"2\" points=\"{}\"/>\n",
                          s.colour, points);
     }
+    // A point's tag unless it would overlap the series' last tag drawn (about 6 px a character, 10 px high).
+    double tag_x = -1e9, tag_y = -1e9, tag_width = 0;
     for (std::size_t k = 0; k < s.points.size(); ++k) {
       const auto [b, e] = s.points[k];
       doc +=
           fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"4\" fill=\"{}\"/>\n", px(b), py(e), s.colour);
-      const bool crowded = s.label.starts_with("Draco") && k % 2 == 1 && k + 1 != s.points.size();
-      if (!s.tags[k].empty() && !crowded)
-        doc += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"{}\">{}</text>\n",
-                           px(b) + 5, py(e) - 5, s.colour, svg::escape(s.tags[k]));
+      const double x = px(b) + 5, y = py(e) - 5;
+      const bool crowded = std::abs(x - tag_x) < tag_width + 4 && std::abs(y - tag_y) < 11;
+      if (s.tags[k].empty() || crowded) continue;
+      doc += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"{}\">{}</text>\n", x, y,
+                         s.colour, svg::escape(s.tags[k]));
+      tag_x = x;
+      tag_y = y;
+      tag_width = 6.0 * static_cast<double>(s.tags[k].size());
     }
     const double ly = kTop + 10 + 22.0 * static_cast<double>(i), lx = kLeft + pw + 16;
     doc += fmt::format(

@@ -156,7 +156,8 @@ Table summary_table(const Report& report) {
                      "decode ms"},
           .right = {false, true, true, true, true, true, true, true, true, true, true, true, true}};
   const auto f3 = [](double v) { return number(v); };
-  for (const Aggregate& a : aggregate(report))
+  for (const Aggregate& a : aggregate(report)) {
+    if (a.bytes.n == 0) continue; // made for no scan: each scan's table says why
     t.rows.push_back(
         {a.name, fmt::format("{}", a.bytes.n), plus_minus(a.bytes, bytes_text),
          plus_minus(a.ratio_to_ply, ratio_text, [](double v) { return fmt::format("{:.2g}", v); }),
@@ -165,6 +166,7 @@ Table summary_table(const Report& report) {
          plus_minus(a.to_scan_mean, f3), plus_minus(a.to_scan_p95, f3), plus_minus(a.to_scan_max, f3),
          plus_minus(a.profile_error, f3), plus_minus(a.encode_ms, milliseconds),
          plus_minus(a.decode_ms, milliseconds)});
+  }
   return t;
 }
 
@@ -175,6 +177,12 @@ Table scan_table(const ScanReport& scan) {
           .right = {false, true, true, true, true, true, true, true, true, true, true, true, true, true, true,
                     true}};
   for (const Variant& v : scan.variants) {
+    if (!v.fidelity) { // nothing was made: the reason, no numbers
+      std::vector<std::string> row{v.name, "–", "–", "–", "–", "–", "–", "–", "failed: " + v.failure};
+      row.resize(t.header.size());
+      t.rows.push_back(std::move(row));
+      continue;
+    }
     std::vector<std::string> row{v.name,
                                  fmt::format("{}", v.bytes),
                                  ratio_text(v.ratio_to_ply),
@@ -183,17 +191,12 @@ Table scan_table(const ScanReport& scan) {
                                  fmt::format("{}", v.triangles),
                                  milliseconds(v.encode_ms),
                                  milliseconds(v.decode_ms)};
-    if (v.fidelity) {
-      const MeshFidelity& f = *v.fidelity;
-      for (const std::string& cell :
-           {number(100.0 * f.coverage.share, 1), number(f.coverage.distance.mean),
-            number(f.coverage.distance.p95), number(f.to_scan.mean), number(f.to_scan.rms),
-            number(f.to_scan.p95), number(f.to_scan.max), number(f.mean_profile_error)})
-        row.push_back(cell);
-    } else {
-      row.push_back("failed: " + v.failure);
-      row.resize(t.header.size());
-    }
+    const MeshFidelity& f = *v.fidelity;
+    for (const std::string& cell :
+         {number(100.0 * f.coverage.share, 1), number(f.coverage.distance.mean),
+          number(f.coverage.distance.p95), number(f.to_scan.mean), number(f.to_scan.rms),
+          number(f.to_scan.p95), number(f.to_scan.max), number(f.mean_profile_error)})
+      row.push_back(cell);
     t.rows.push_back(std::move(row));
   }
   return t;
