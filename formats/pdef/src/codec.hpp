@@ -19,7 +19,11 @@ inline constexpr std::size_t kHeaderBytes = 10; // magic, version, flags, length
 inline constexpr std::size_t kChecksumBytes = 4;
 inline constexpr std::size_t kMinFileBytes = kHeaderBytes + kChecksumBytes;
 
-enum Tag : std::uint8_t { kTagFace = 1, kTagCurves = 2, kTagLandmarks = 3, kTagName = 4 };
+//! The sections' tags.
+inline constexpr std::uint8_t kTagFace = 1;
+inline constexpr std::uint8_t kTagCurves = 2;
+inline constexpr std::uint8_t kTagLandmarks = 3;
+inline constexpr std::uint8_t kTagName = 4;
 inline constexpr std::uint8_t kFirstAncillaryTag = 0x80;
 
 //! Lossy steps are whole multiples of 2^-20 mm, so that every decoded value is an exact binary fraction.

@@ -28,7 +28,7 @@ struct Split {
 };
 Split split(std::uint32_t s) {
   if (s < 4) return {s, 0, 0};
-  const int b = std::bit_width(s) - 1; // s in [2^b, 2^(b+1)), b >= 2
+  const int b = static_cast<int>(std::bit_width(s)) - 1; // s in [2^b, 2^(b+1)), b >= 2
   const std::uint32_t half = (s >> (b - 1)) & 1U;
   return {4 + 2 * static_cast<std::uint32_t>(b - 2) + half, b - 1, s & ((1U << (b - 1)) - 1)};
 }

@@ -362,6 +362,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
   int bisections = 0;
   for (std::size_t attempt = 0; units >= 1 && attempt < 200; ++attempt) {
     Checked c = check(units);
+    const double ratio = c.ratio;
     if (c.passed) {
       best = units;
       passed = std::move(c);
@@ -370,7 +371,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
       failed = units;
     }
     if (best == 0) {
-      units = std::min(units - 1, static_cast<std::uint32_t>(units * std::min(0.98, 0.995 * c.ratio)));
+      units = std::min(units - 1, static_cast<std::uint32_t>(units * std::min(0.98, 0.995 * ratio)));
       continue;
     }
     if (failed == 0 || bisections == 2 || failed - best <= std::max<std::uint32_t>(1, best / 100)) break;
