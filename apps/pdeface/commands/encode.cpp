@@ -39,7 +39,7 @@ void encode_command(CLI::App& app, int& status) {
       "Scan -> aligned -> profile curves -> a .pdef file: the curves, the PDE surface's settings and "
       "the frame back to the scan (docs/pdef-format.md)");
   add_input(cmd, args->in, "Scan (any readable format, mesh or point cloud)");
-  cmd->add_option("-o,--output", args->out, "The .pdef file to write")->required();
+  add_output(cmd, args->out, "The .pdef file to write");
   cmd->add_option("--max-error", args->max_error,
                   "Lossy: every sample, and the surface decoded, within this distance (mm) of the original")
       ->check(CLI::Range(0.001, 10.0))

@@ -74,20 +74,8 @@ public:
     if (!need(1, what)) return 0;
     return static_cast<std::uint8_t>(bytes_[pos_++]);
   }
-  std::uint32_t u32(std::string_view what) {
-    if (!need(4, what)) return 0;
-    std::uint32_t v = 0;
-    for (int i = 0; i < 4; ++i)
-      v |= std::uint32_t{static_cast<std::uint8_t>(bytes_[pos_++])} << (8 * i);
-    return v;
-  }
-  std::uint64_t u64(std::string_view what) {
-    if (!need(8, what)) return 0;
-    std::uint64_t v = 0;
-    for (int i = 0; i < 8; ++i)
-      v |= std::uint64_t{static_cast<std::uint8_t>(bytes_[pos_++])} << (8 * i);
-    return v;
-  }
+  std::uint32_t u32(std::string_view what) { return little_endian<std::uint32_t>(what); }
+  std::uint64_t u64(std::string_view what) { return little_endian<std::uint64_t>(what); }
   float f32(std::string_view what) { return std::bit_cast<float>(u32(what)); }
   double f64(std::string_view what) { return std::bit_cast<double>(u64(what)); }
 
@@ -126,6 +114,13 @@ public:
   }
 
 private:
+  template <typename Unsigned> Unsigned little_endian(std::string_view what) {
+    if (!need(sizeof(Unsigned), what)) return 0;
+    Unsigned v = 0;
+    for (std::size_t i = 0; i < sizeof(Unsigned); ++i)
+      v |= Unsigned{static_cast<std::uint8_t>(bytes_[pos_++])} << (8 * i);
+    return v;
+  }
   bool need(std::size_t n, std::string_view what) {
     if (error_) return false;
     if (n <= remaining()) return true;
