@@ -67,6 +67,9 @@ TEST(FacefunsTable, ProfileErrorFallsAsTheRatioGrows) {
 
 // Local heights (the default) beat sampling each curve in its own parameter at the compact ratio and above
 // it: neighbouring curves put point k at nearly one height, so the surface between them does not shear.
+// (Heights chosen at every third curve, on a grid, with the samples at exactly those heights, keep about
+// half of the 10 % ratio's gain that heights of every curve's own had: 0.111 against 0.108 mm here, for
+// files a quarter smaller: docs/slice.md.)
 TEST(FacefunsTable, LocalHeightsBeatOwnParameterSampling) {
   PDEFACE_FACE_OR_SKIP(path, "facefuns_m46.ply");
   const Result<formats::LoadedMesh> scan = formats::read_mesh(path);
@@ -78,7 +81,7 @@ TEST(FacefunsTable, LocalHeightsBeatOwnParameterSampling) {
   const Result<std::vector<TableRow>> own = table_rows(scan->mesh, a, options);
   ASSERT_TRUE(own && local);
   const auto mean = [](const TableRow& r) { return r.fidelity->surface.both.mean; };
-  EXPECT_LT(mean((*local)[0]), 0.95 * mean((*own)[0]));
+  EXPECT_LT(mean((*local)[0]), 0.98 * mean((*own)[0]));
   EXPECT_LT(mean((*local)[1]), 0.95 * mean((*own)[1]));
   EXPECT_LT((*local)[1].fidelity->mean_profile_error, 0.9 * (*local)[0].fidelity->mean_profile_error);
   std::printf(

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <bit>
+#include <cmath>
 #include <cstdio>
 
 namespace pdeface::slice {
@@ -139,6 +141,40 @@ TEST(Profiles, SamplingsLineUpPointKAsAsked) {
       "point k of neighbouring curves, mean relative height apart: shared %.4f, local %.4f, each alone "
       "%.4f, own parameter %.4f\n",
       neighbour_spread(*set), neighbour_spread(*local), neighbour_spread(*alone), neighbour_spread(*own));
+}
+
+// Local heights are chosen at every third curve (the joints), the same for a mirrored pair, on a grid of
+// 2^-h (h = ⌈log₂ K⌉ + 4), blended linearly in x between them, and the samples sit at exactly those heights:
+// what lets a .pdef store a curve's heights as its extent and a few small integers (docs/slice.md).
+TEST(Profiles, LocalHeightsAreTheAnchorsOnTheirGridBlended) {
+  for (const double ratio : {0.1, 0.2}) {
+    Result<ProfileSet> set = extract(face(), {.ratio = ratio});
+    ASSERT_TRUE(set) << set.error().message;
+    const std::size_t n = set->curves.size(), k = set->k;
+    ASSERT_EQ((n - 1) % 3, 0U);
+    const int bits = static_cast<int>(std::bit_width(k - 1)) + 4;
+    const auto relative = [&](std::size_t j, std::size_t i) {
+      const ProfileCurve& c = set->curves[j];
+      return (c.points[i].y() - c.extent[0]) / (c.extent[1] - c.extent[0]);
+    };
+    for (std::size_t j = 0; j < n; ++j) {
+      EXPECT_EQ(set->curves[j].points.front().y(), set->curves[j].extent[0]) << j;
+      EXPECT_EQ(set->curves[j].points.back().y(), set->curves[j].extent[1]) << j;
+      for (std::size_t i = 1; i < k; ++i)
+        EXPECT_GT(relative(j, i), relative(j, i - 1)) << j << " " << i;
+      for (std::size_t i = 1; i + 1 < k; ++i) {
+        if (j % 3 == 0) { // an anchor: on the grid, as its mirror
+          const double units = std::ldexp(relative(j, i), bits);
+          EXPECT_NEAR(units, std::round(units), 1e-6) << j << " " << i;
+          EXPECT_NEAR(relative(j, i), relative(n - 1 - j, i), 1e-12) << j << " " << i;
+        } else { // between two anchors, blended by x
+          const std::size_t a = j - j % 3, b = a + 3;
+          const double w = (set->curves[j].x - set->curves[a].x) / (set->curves[b].x - set->curves[a].x);
+          EXPECT_NEAR(relative(j, i), (1 - w) * relative(a, i) + w * relative(b, i), 1e-9) << j << " " << i;
+        }
+      }
+    }
+  }
 }
 
 TEST(Profiles, EvaluationProfilesLieInTheirPlanes) {

@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <span>
+#include <vector>
 
 namespace pdeface::slice {
 namespace {
@@ -143,6 +147,57 @@ TEST(Spline, BadFitsAreInvalidArguments) {
   ASSERT_FALSE(s);
   EXPECT_EQ(s.error().code, ErrorCode::InvalidArgument);
   EXPECT_THROW(Spline(std::vector<Vec3>(3)), std::invalid_argument);
+}
+
+} // namespace
+} // namespace pdeface::slice
+
+namespace pdeface::slice {
+namespace {
+
+// A profile of a face-like depth along its height, densely as a scan's section would be.
+double depth(double y) { return 20.0 * std::exp(-y * y / 900.0) + 0.002 * y * y; }
+
+// Samples at given heights sit at exactly those heights, on the profile (its depth there within the cosine
+// fit's error), in its plane, ends held; heights that do not ascend, or not one per parameter, are refused.
+TEST(CosineSamples, AtHeightsSitExactlyThereOnTheProfile) {
+  std::vector<Vec3> profile;
+  for (int i = 0; i <= 800; ++i) {
+    const double y = -80.0 + 160.0 * i / 800.0;
+    profile.emplace_back(3.0, y, depth(y));
+  }
+  // The polyline's arc length at each height: the parameters the heights stand at.
+  std::vector<double> length{0.0};
+  for (std::size_t i = 1; i < profile.size(); ++i)
+    length.push_back(length.back() + (profile[i] - profile[i - 1]).norm());
+  const std::size_t k = 24;
+  std::vector<double> heights, at;
+  for (std::size_t i = 0; i < k; ++i) {
+    const double t =
+        0.5 - 0.5 * std::cos(std::numbers::pi * static_cast<double>(i) / static_cast<double>(k - 1));
+    heights.push_back(-80.0 + 160.0 * t);
+    const auto n = static_cast<std::size_t>(std::lround(800.0 * t));
+    at.push_back(length[n] / length.back());
+  }
+  at.front() = 0.0;
+  at.back() = 1.0;
+  const Result<std::vector<Vec3>> samples = cosine_samples(profile, at, heights);
+  ASSERT_TRUE(samples) << samples.error().message;
+  ASSERT_EQ(samples->size(), k);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    EXPECT_EQ((*samples)[i].y(), heights[i]) << i;
+    EXPECT_NEAR((*samples)[i].x(), 3.0, 1e-9) << i;
+    worst = std::max(worst, std::abs((*samples)[i].z() - depth(heights[i])));
+  }
+  EXPECT_EQ(samples->front(), profile.front());
+  EXPECT_EQ(samples->back(), profile.back());
+  EXPECT_LT(worst, 0.05) << "the samples' depth is the profile's at their heights";
+  std::vector<double> descending = heights;
+  std::swap(descending[3], descending[4]);
+  EXPECT_EQ(cosine_samples(profile, at, descending).error().code, ErrorCode::InvalidArgument);
+  EXPECT_EQ(cosine_samples(profile, at, std::span(heights).first(k - 1)).error().code,
+            ErrorCode::InvalidArgument);
 }
 
 } // namespace

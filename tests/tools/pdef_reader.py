@@ -146,11 +146,66 @@ def decode_classes(r, count):
     return out
 
 
+def unzigzag(u):
+    return (u >> 1) ^ -(u & 1)
+
+
+def read_heights(r, X, J, K, step):
+    """y of every sample (units of 2^-20 mm) from its curve's extent and the anchors' relative heights."""
+    s, h, flags = r.varint(), r.u8(), r.u8()
+    if s < 1 or s >= J or (J - 1) % s or h < 1 or h > 16 or flags & ~1:
+        raise Bad("a bad heights layout")
+    extents = [unzigzag(u) for u in decode_classes(r, 2 * J)]
+    lines = []
+    for d in (extents[:J], extents[J:]):
+        v = []
+        for j in range(J):
+            v.append(d[j] if j == 0 else v[0] + d[j] if j == 1 else d[j] + 2 * v[j - 1] - v[j - 2])
+        lines.append(v)
+    B, T = lines
+    if any(abs(b) > MAX_Q for b in B + T) or any(not 0 < (T[j] - B[j]) * step < 2 ** 32 for j in range(J)):
+        raise Bad("a bad extent")
+    n = (J - 1) // s + 1
+    stored = (n + 1) // 2 if flags & 1 else n
+    codes = decode_classes(r, stored * (K - 2))
+    H = [[0] * K for _ in range(n)]
+    for a in range(n):
+        H[a][K - 1] = 2 ** h
+        for k in range(1, K - 1):
+            mirror = n - 1 - a
+            if flags & 1 and a >= stored:
+                H[a][k] = H[mirror][k]
+                continue
+            if mirror < a:
+                p = H[mirror][k]
+            elif a > 0:
+                p = H[a - 1][k] + H[a][k - 1] - H[a - 1][k - 1]
+            else:
+                p = rounded_div(2 ** h, K - 1) if k == 1 else 2 * H[0][k - 1] - H[0][k - 2]
+            H[a][k] = p + unzigzag(codes[a * (K - 2) + k - 1])
+            if not 0 <= H[a][k] <= 2 ** h:
+                raise Bad("a relative height outside 0..2^h")
+    rest = [unzigzag(u) for u in decode_classes(r, J * (K - 2))]
+    y = []
+    for j in range(J):
+        b, t, a = B[j] * step, T[j] * step, j // s
+        w = 0 if j % s == 0 else rounded_div(4096 * (X[j] - X[a * s]), X[(a + 1) * s] - X[a * s])
+        for k in range(K):
+            if k == 0:
+                y.append(b)
+            elif k == K - 1:
+                y.append(t)
+            else:
+                m = (4096 - w) * H[a][k] + (w * H[a + 1][k] if w else 0)
+                y.append(b + rounded_div((t - b) * m, 2 ** (h + 12)) + rest[j * (K - 2) + k - 1] * step)
+    return y
+
+
 def main(path):
     data = open(path, "rb").read()
     if data[:4] != b"PDEF":
         raise Bad("bad magic")
-    if data[4] != 1:
+    if data[4] != 2:
         raise Bad("unknown version %d" % data[4])
     flags = data[5]
     if flags & ~1:
@@ -189,30 +244,37 @@ def main(path):
     step, plane_step = r.varint(), r.varint()
     r = Reader(data, *sections[2])
     runs = [r.varint() for _ in range(r.varint())]
-    filled, state = [], False
+    across, state = [], False  # sample by sample across the curves
     for run in runs:
-        filled += [state] * run
+        across += [state] * run
         state = not state
+    filled = [across[(i % K) * J + i // K] for i in range(J * K)]
     X = []
     for j in range(J):
         v = r.svarint(10)
         X.append(v if j == 0 else X[0] + v if j == 1 else v + 2 * X[-1] - X[-2])
     coords = []
     for c in range(2):
-        w = DEFAULT_WEIGHTS[c] if r.u8() == 0 else [r.svarint() for _ in range(7)]
+        kind = r.u8()
+        if c == 0 and kind == 2:
+            coords.append(read_heights(r, X, J, K, step))
+            continue
+        if kind > 1:
+            raise Bad("unknown kind %d" % kind)
+        w = DEFAULT_WEIGHTS[c] if kind == 0 else [r.svarint() for _ in range(7)]
         symbols = decode_classes(r, J * K)
         a_values = []
         for i, s in enumerate(symbols):
             a_values.append(predict(a_values + [0], X, K, w, i // K, i % K) + ((s >> 1) ^ -(s & 1)))
-        coords.append(a_values)
+        coords.append([v * step for v in a_values])
     if r.pos != r.end:
         raise Bad("bytes left in the curves section")
     print("step %.17g plane_step %.17g" % (step * UNIT, plane_step * UNIT))
     for j in range(J):
         for k in range(K):
             i = j * K + k
-            print("%d %d %.17g %.17g %.17g %d" % (j, k, X[j] * plane_step * UNIT, coords[0][i] * step * UNIT,
-                                                  coords[1][i] * step * UNIT, filled[i]))
+            print("%d %d %.17g %.17g %.17g %d" % (j, k, X[j] * plane_step * UNIT, coords[0][i] * UNIT,
+                                                  coords[1][i] * UNIT, filled[i]))
 
 
 if __name__ == "__main__":

@@ -72,7 +72,11 @@ nlohmann::json to_json(const PdefInfo& info) {
   const std::array<double, 2> size = pdef::face_size(f);
   nlohmann::json j;
   j["lossless"] = f.storage.lossless;
-  if (!f.storage.lossless) j["step_mm"] = f.storage.step_mm;
+  if (!f.storage.lossless) {
+    j["step_mm"] = f.storage.step_mm;
+    j["heights_stride"] = f.storage.heights_stride;
+    j["heights_bits"] = f.storage.heights_bits;
+  }
   j["curves"] = f.curve_count();
   j["samples_per_curve"] = f.sample_count();
   j["planes_mm"] = {f.planes.front(), f.planes.back()};
@@ -104,8 +108,12 @@ void print_text(const PdefInfo& info) {
   if (f.storage.lossless)
     fmt::print("  storage         lossless (float64)\n");
   else
-    fmt::print("  storage         lossy: samples on a {:.4f} mm grid, planes on {:.5f} mm\n",
-               f.storage.step_mm, f.storage.plane_step_mm);
+    fmt::print("  storage         lossy: samples on a {:.4f} mm grid, planes on {:.5f} mm, y {}\n",
+               f.storage.step_mm, f.storage.plane_step_mm,
+               f.storage.heights_stride == 0
+                   ? std::string("predicted")
+                   : fmt::format("as heights (anchors every {} curves, on a grid of 1/{})", f.storage.heights_stride,
+                                 1U << f.storage.heights_bits));
   fmt::print(
       "  curves          {} x {} samples, x = {:.1f} .. {:.1f} mm, {:.1f} x {:.1f} mm, {} samples filled\n",
       f.curve_count(), f.sample_count(), f.planes.front(), f.planes.back(), size[0], size[1],

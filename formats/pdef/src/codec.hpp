@@ -12,7 +12,7 @@
 
 namespace pdeface::pdef::detail {
 
-inline constexpr std::uint8_t kVersion = 1;
+inline constexpr std::uint8_t kVersion = 2;
 inline constexpr std::uint8_t kFlagLossless = 0x01;
 inline constexpr std::uint8_t kKnownFlags = kFlagLossless;
 inline constexpr std::size_t kHeaderBytes = 10; // magic, version, flags, length
@@ -46,14 +46,35 @@ struct Grid {
   [[nodiscard]] double plane_step_mm() const { return plane_step * kStepUnit; }
 };
 
-//! The samples on a grid: planes[j], y[j·K + k], z[j·K + k] in steps.
+//! A layout of heights on a grid (`Quantised::heights`); `stride` 0 when y is predicted sample by sample.
+struct Heights {
+  std::uint32_t stride = 0; //!< anchors: the curves j with j mod stride = 0 (stride divides J − 1)
+  std::uint32_t bits = 0;   //!< relative heights in units of 2^-bits
+  std::vector<std::int64_t> bottom, top; //!< each curve's extent, in steps
+  std::vector<std::int64_t> table;       //!< anchor a's interior heights k = 1..K−2 at a·(K−2) + k − 1
+  bool symmetric = false;                //!< anchor A − 1 − a's heights are anchor a's (not stored)
+  [[nodiscard]] bool used() const { return stride != 0; }
+};
+
+//! The samples on a grid: planes[j], y[j·K + k], z[j·K + k] in steps; with `heights` used, y holds each
+//! sample's residual from its height (zero at the curves' ends).
 struct Quantised {
   std::size_t curves = 0;
   std::size_t samples = 0;
   std::vector<std::int64_t> planes;
   std::vector<std::int64_t> y;
   std::vector<std::int64_t> z;
+  Heights heights;
 };
+
+//! Signed ↔ unsigned symbols (0, −1, 1, −2, … ↔ 0, 1, 2, 3, …), for values within ±2^31.
+[[nodiscard]] inline std::uint32_t zigzag32(std::int64_t v) {
+  return static_cast<std::uint32_t>((static_cast<std::uint64_t>(v) << 1) ^
+                                    static_cast<std::uint64_t>(v >> 63));
+}
+[[nodiscard]] inline std::int64_t unzigzag32(std::uint32_t u) {
+  return static_cast<std::int64_t>(u >> 1) ^ -static_cast<std::int64_t>(u & 1);
+}
 
 //! The prediction's weights (fixed point, kWeightBits fractional bits), one set per coordinate.
 inline constexpr std::size_t kFeatures = 7;
@@ -77,6 +98,15 @@ inline constexpr std::array<Weights, 2> kDefaultWeights{
 [[nodiscard]] std::vector<std::uint32_t> to_symbols(std::span<const std::int64_t> values,
                                                     std::span<const std::int64_t> planes, std::size_t samples,
                                                     const Weights& w);
+//! One coordinate's values predicted sample by sample as a file holds them: the weights' kind (0: the
+//! default weights of `coordinate`, 1: the file's own, which follow) and the residuals' classes, whichever
+//! is smaller.
+[[nodiscard]] std::string write_predicted(std::span<const std::int64_t> values,
+                                          std::span<const std::int64_t> planes, std::size_t samples,
+                                          std::size_t coordinate);
+//! The y kind of a file whose y is stored as heights (after kinds 0 and 1 of `write_predicted`).
+inline constexpr std::uint8_t kHeightsKind = 2;
+
 //! False when a value leaves ±kMaxQuantised (a corrupt stream): `values` is then incomplete.
 [[nodiscard]] bool from_symbols(std::span<const std::uint32_t> symbols, std::span<const std::int64_t> planes,
                                 std::size_t samples, const Weights& w, std::span<std::int64_t> values);

@@ -4,6 +4,7 @@
 #include "lossy.hpp"
 
 #include "frame.hpp"
+#include "heights.hpp"
 
 #include <fmt/format.h>
 
@@ -104,11 +105,12 @@ double distance_to(const pde::Surface& surface, const Vec3& p, double u, double 
 
 } // namespace
 
-std::optional<Quantised> quantise(const Face& face, const Grid& grid) {
+std::optional<Quantised> quantise(const Face& face, const Grid& grid, bool own) {
   Quantised q;
   q.curves = face.curve_count();
   q.samples = face.sample_count();
   const double step = grid.step_mm(), plane_step = grid.plane_step_mm();
+  std::vector<double> heights; // every sample's y (mm)
   for (std::size_t j = 0; j < q.curves; ++j) {
     const std::optional<std::int64_t> x = rounded(face.planes[j], plane_step);
     if (!x || (j > 0 && *x <= q.planes.back())) return std::nullopt;
@@ -119,7 +121,17 @@ std::optional<Quantised> quantise(const Face& face, const Grid& grid) {
       if (!y || !z) return std::nullopt;
       q.y.push_back(*y);
       q.z.push_back(*z);
+      heights.push_back(c(k, 1));
     }
+  }
+  // y as heights when that is smaller than predicting it sample by sample (a decoded face: as it was).
+  if (own && face.storage.heights_stride == 0) return q;
+  std::optional<HeightsFit> fit = fit_heights(
+      heights, q.planes, q.samples, grid,
+      own ? std::optional<Layout>({face.storage.heights_stride, face.storage.heights_bits}) : std::nullopt);
+  if (fit && (own || fit->bytes < write_predicted(q.y, q.planes, q.samples, 0).size())) {
+    q.heights = std::move(fit->heights);
+    q.y = std::move(fit->residuals);
   }
   return q;
 }
@@ -134,7 +146,11 @@ void dequantise(const Quantised& q, const Grid& grid, Face& face) {
     for (std::size_t k = 0; k < q.samples; ++k) {
       const auto row = static_cast<Eigen::Index>(k);
       c(row, 0) = face.planes[j];
-      c(row, 1) = value(q.y[j * q.samples + k], grid.step);
+      c(row, 1) = q.heights.used()
+                      ? static_cast<double>(height_units(q.heights, q.planes, q.samples, grid.step, j, k) +
+                                            q.y[j * q.samples + k] * grid.step) *
+                            kStepUnit
+                      : value(q.y[j * q.samples + k], grid.step);
       c(row, 2) = value(q.z[j * q.samples + k], grid.step);
     }
   }
@@ -289,8 +305,10 @@ double surface_error(const pde::Surface& reference, const pde::Surface& decoded,
 
 Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
   const double e = options.max_error_mm;
-  // Every sample within e: y and z within half a step, x within half a plane step (step / 8).
-  const double first = e / std::sqrt(0.5 + 0.25 / (kPlaneRefinement * kPlaneRefinement));
+  // The coarsest grid that could keep every sample within e: z within half a step, x within half a plane
+  // step (step / 8), y exact (stored as heights); a face whose y is on the grid too fails its first check
+  // and continues on a grid finer by what it missed.
+  const double first = e / std::sqrt(0.25 + 0.25 / (kPlaneRefinement * kPlaneRefinement));
   if (!(first / kStepUnit >= 1.0) || first / kStepUnit >= kMaxStepUnits)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("pdef: a maximum error of {} mm is outside the range the format can hold "
@@ -308,7 +326,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
                    static_cast<std::uint32_t>(std::llround(face.storage.plane_step_mm / kStepUnit))};
     if (own.step > 0 && own.plane_step > 0 && own.step_mm() == face.storage.step_mm &&
         own.plane_step_mm() == face.storage.plane_step_mm) {
-      if (std::optional<Quantised> q = quantise(face, own)) {
+      if (std::optional<Quantised> q = quantise(face, own, true)) {
         Face back = face;
         dequantise(*q, own, back);
         if (back.planes == face.planes && sample_error(face, back) == 0 &&

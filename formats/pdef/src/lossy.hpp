@@ -20,7 +20,8 @@ struct LossyPlan {
 };
 
 //! The samples on `grid` (nullopt when one leaves ±kMaxQuantised or the planes stop ascending).
-[[nodiscard]] std::optional<Quantised> quantise(const Face& face, const Grid& grid);
+//! y as heights when that is smaller, or (`own`) as the face's storage says it was when it was decoded.
+[[nodiscard]] std::optional<Quantised> quantise(const Face& face, const Grid& grid, bool own = false);
 //! The face's planes and curves from their values on `grid` (every sample of curve j at x = its plane).
 void dequantise(const Quantised& q, const Grid& grid, Face& face);
 

@@ -6,6 +6,7 @@
 #include "codec.hpp"
 #include "entropy.hpp"
 #include "frame.hpp"
+#include "heights.hpp"
 #include "lossy.hpp"
 
 #include <fmt/format.h>
@@ -131,14 +132,16 @@ std::string face_section(const Face& face, bool lossless, const Grid& grid, bool
   return std::move(w.str());
 }
 
+// The filled samples as runs, sample by sample across the curves (sample 0 of every curve, then sample 1,
+// ...): holes (the eyes) are wide across the curves and short along them.
 void write_runs(Writer& w, const Face& face) {
   std::vector<std::uint64_t> runs{0};
   bool current = false;
-  for (const std::vector<bool>& curve : face.filled)
-    for (const bool f : curve) {
-      if (f != current) {
+  for (std::size_t k = 0; k < face.sample_count(); ++k)
+    for (const std::vector<bool>& curve : face.filled) {
+      if (curve[k] != current) {
         runs.push_back(0);
-        current = f;
+        current = curve[k];
       }
       ++runs.back();
     }
@@ -174,20 +177,14 @@ std::string curves_section(const Face& face, const Quantised* q) {
     w.svarint(j == 0   ? q->planes[0]
               : j == 1 ? q->planes[1] - q->planes[0]
                        : q->planes[j] - 2 * q->planes[j - 1] + q->planes[j - 2]);
-  for (const std::size_t c : {0, 1}) {
-    // The default weights, or the file's own (least squares) when they make it smaller.
-    const std::vector<std::int64_t>& values = c == 0 ? q->y : q->z;
-    const detail::Weights own = detail::fit_weights(values, q->planes, samples);
-    Writer with_default, with_own;
-    with_default.u8(0);
-    with_default.bytes(
-        detail::encode_classes(detail::to_symbols(values, q->planes, samples, detail::kDefaultWeights[c])));
-    with_own.u8(1);
-    for (const std::int32_t weight : own)
-      with_own.svarint(weight);
-    with_own.bytes(detail::encode_classes(detail::to_symbols(values, q->planes, samples, own)));
-    w.bytes(with_own.size() < with_default.size() ? with_own.str() : with_default.str());
+  if (q->heights.used()) {
+    w.u8(detail::kHeightsKind);
+    w.bytes(detail::write_heights(q->heights, q->y, curves, samples));
+  } else {
+    w.bytes(detail::write_predicted(q->y, q->planes, samples, 0));
   }
+  w.bytes(detail::write_predicted(q->z, q->planes, samples, 1));
+
   return std::move(w.str());
 }
 
@@ -445,7 +442,7 @@ void read_runs(Reader& r, Face& face, const Meta& m) {
     }
     if (i % 2 == 1)
       for (std::uint64_t s = done; s < done + run; ++s)
-        face.filled[s / m.samples][s % m.samples] = true;
+        face.filled[s % m.curves][s / m.curves] = true;
     done += run;
   }
   if (done != total)
@@ -521,8 +518,16 @@ void read_lossy_curves(Reader& r, Face& face, const Meta& m) {
     const char* name = c == 0 ? "y" : "z";
     const std::size_t kind_at = r.offset();
     const std::uint8_t kind = r.u8("the prediction's weights");
+    if (r.ok() && c == 0 && kind == detail::kHeightsKind) {
+      if (!detail::read_heights(r, q.planes, m.samples, m.grid.step, q.heights, q.y)) return;
+      face.storage.heights_stride = q.heights.stride;
+      face.storage.heights_bits = q.heights.bits;
+      continue;
+    }
     if (r.ok() && kind > 1)
-      r.fail(ErrorCode::Malformed, fmt::format("unknown prediction weights {} (0: default, 1: stored)", kind),
+      r.fail(ErrorCode::Malformed,
+             fmt::format("unknown {} kind {} (0: default weights, 1: stored weights{})", name, kind,
+                         c == 0 ? ", 2: heights" : ""),
              kind_at);
     detail::Weights weights = detail::kDefaultWeights[c];
     for (std::int32_t& weight : weights) {

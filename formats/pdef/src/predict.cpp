@@ -3,6 +3,9 @@
 
 #include "codec.hpp"
 
+#include "bytes.hpp"
+#include "entropy.hpp"
+
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -115,6 +118,19 @@ bool from_symbols(std::span<const std::uint32_t> symbols, std::span<const std::i
     values[i] = v;
   }
   return true;
+}
+
+std::string write_predicted(std::span<const std::int64_t> values, std::span<const std::int64_t> planes,
+                            std::size_t samples, std::size_t coordinate) {
+  const Weights own = fit_weights(values, planes, samples);
+  Writer with_default, with_own;
+  with_default.u8(0);
+  with_default.bytes(encode_classes(to_symbols(values, planes, samples, kDefaultWeights.at(coordinate))));
+  with_own.u8(1);
+  for (const std::int32_t weight : own)
+    with_own.svarint(weight);
+  with_own.bytes(encode_classes(to_symbols(values, planes, samples, own)));
+  return with_own.size() < with_default.size() ? std::move(with_own.str()) : std::move(with_default.str());
 }
 
 } // namespace pdeface::pdef::detail

@@ -7,37 +7,18 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 
 namespace pdeface::slice {
 
-Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points, std::span<const double> at,
-                                         const SplineOptions& options) {
-  const std::size_t k = at.size();
-  if (k < 4 || at.front() != 0.0 || at.back() != 1.0 || !std::ranges::is_sorted(at))
-    return make_error(ErrorCode::InvalidArgument,
-                      "cosine samples: the parameters must ascend from 0 to 1 (4 or more)");
-  const std::vector<double> t = parameters(points, options);
-  if (t.empty())
-    return make_error(
-        ErrorCode::InvalidArgument,
-        fmt::format("the points do not advance along the {} parameter", to_string(options.parameter)));
-  // The polyline at M + 1 values of v evenly over [0, π], v following the parameter piecewise linearly
-  // through (at[k], v_k): the parameter of v_m is interpolated between the samples' parameters.
-  const std::size_t m = std::max<std::size_t>(8 * k, 512);
+namespace {
+
+// The K samples at v_k = kπ/(K − 1) of the least-squares fit of the first K cosines to the M + 1 rows of `p`
+// (the curve at v_r = rπ/M), held to `front` and `back` at its ends.
+std::vector<Vec3> fit_and_sample(const Eigen::MatrixX3d& p, std::size_t k, const Vec3& front,
+                                 const Vec3& back) {
+  const auto m = static_cast<std::size_t>(p.rows() - 1);
   const double dv = std::numbers::pi / static_cast<double>(k - 1);
-  Eigen::MatrixX3d p(static_cast<Eigen::Index>(m + 1), 3);
-  std::size_t seg = 0;
-  for (std::size_t r = 0; r <= m; ++r) {
-    const double v = std::numbers::pi * static_cast<double>(r) / static_cast<double>(m);
-    const double f = std::min(v / dv, static_cast<double>(k - 1));
-    const auto i = std::min(static_cast<std::size_t>(f), k - 2);
-    const double u = at[i] + (f - static_cast<double>(i)) * (at[i + 1] - at[i]);
-    while (seg + 2 < t.size() && t[seg + 1] < u)
-      ++seg;
-    const double span = t[seg + 1] - t[seg];
-    const double w = span > 0.0 ? std::clamp((u - t[seg]) / span, 0.0, 1.0) : 0.0;
-    p.row(static_cast<Eigen::Index>(r)) = (points[seg] + w * (points[seg + 1] - points[seg])).transpose();
-  }
   // On M + 1 even points with trapezoid weights the cosines are orthogonal (a DCT-I), so the least-squares
   // fit of the first K of them is the projection α_n = (2/M) Σ w_r p_r cos(n v_r) (α_0 halved), with the
   // weights the Gram matrix's diagonal g_n (M for n = 0, M/2 otherwise)...
@@ -70,8 +51,8 @@ Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points, std::span
   }
   const Eigen::MatrixXd ginv_ct = gram.cwiseInverse().asDiagonal() * c.transpose();
   Eigen::Matrix<double, 2, 3> miss;
-  miss.row(0) = points.front().transpose() - c.row(0) * alpha;
-  miss.row(1) = points.back().transpose() - c.row(1) * alpha;
+  miss.row(0) = front.transpose() - c.row(0) * alpha;
+  miss.row(1) = back.transpose() - c.row(1) * alpha;
   alpha += ginv_ct * (c * ginv_ct).ldlt().solve(miss);
 
   std::vector<Vec3> out(k);
@@ -88,8 +69,131 @@ Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points, std::span
     }
     out[i] = q;
   }
-  out.front() = points.front(); // exactly, whatever the rounding
-  out.back() = points.back();
+  out.front() = front; // exactly, whatever the rounding
+  out.back() = back;
+  return out;
+}
+
+} // namespace
+
+namespace {
+
+// The polyline at M + 1 values of v evenly over [0, π], v following the parameter piecewise linearly through
+// (at[k], v_k): the parameter of v_m is interpolated between the samples' parameters. Each row's segment and
+// the fraction along it in `segments` when given.
+Eigen::MatrixX3d by_parameter(std::span<const Vec3> points, std::span<const double> t,
+                              std::span<const double> at, std::size_t m,
+                              std::vector<std::pair<std::size_t, double>>* segments) {
+  const std::size_t k = at.size();
+  const double dv = std::numbers::pi / static_cast<double>(k - 1);
+  Eigen::MatrixX3d p(static_cast<Eigen::Index>(m + 1), 3);
+  std::size_t seg = 0;
+  for (std::size_t r = 0; r <= m; ++r) {
+    const double v = std::numbers::pi * static_cast<double>(r) / static_cast<double>(m);
+    const double f = std::min(v / dv, static_cast<double>(k - 1));
+    const auto i = std::min(static_cast<std::size_t>(f), k - 2);
+    const double u = at[i] + (f - static_cast<double>(i)) * (at[i + 1] - at[i]);
+    while (seg + 2 < t.size() && t[seg + 1] < u)
+      ++seg;
+    const double span = t[seg + 1] - t[seg];
+    const double w = span > 0.0 ? std::clamp((u - t[seg]) / span, 0.0, 1.0) : 0.0;
+    p.row(static_cast<Eigen::Index>(r)) = (points[seg] + w * (points[seg + 1] - points[seg])).transpose();
+    if (segments != nullptr) segments->emplace_back(seg, w);
+  }
+  return p;
+}
+
+std::optional<Error> check_parameters(std::span<const double> at) {
+  if (at.size() < 4 || at.front() != 0.0 || at.back() != 1.0 || !std::ranges::is_sorted(at))
+    return Error{ErrorCode::InvalidArgument,
+                 "cosine samples: the parameters must ascend from 0 to 1 (4 or more)"};
+  return std::nullopt;
+}
+
+Result<std::vector<double>> polyline_parameters(std::span<const Vec3> points, const SplineOptions& options) {
+  std::vector<double> t = parameters(points, options);
+  if (t.empty())
+    return make_error(
+        ErrorCode::InvalidArgument,
+        fmt::format("the points do not advance along the {} parameter", to_string(options.parameter)));
+  return t;
+}
+
+} // namespace
+
+Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points, std::span<const double> at,
+                                         const SplineOptions& options) {
+  if (std::optional<Error> e = check_parameters(at)) return *e;
+  Result<std::vector<double>> t = polyline_parameters(points, options);
+  if (!t) return t.error();
+  const std::size_t m = std::max<std::size_t>(8 * at.size(), 512);
+  return fit_and_sample(by_parameter(points, *t, at, m, nullptr), at.size(), points.front(), points.back());
+}
+
+Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points, std::span<const double> at,
+                                         std::span<const double> heights, const SplineOptions& options) {
+  if (std::optional<Error> e = check_parameters(at)) return *e;
+  const std::size_t k = at.size();
+  if (heights.size() != k || !std::ranges::is_sorted(heights))
+    return make_error(ErrorCode::InvalidArgument, "cosine samples: one height per parameter, ascending");
+  Result<std::vector<double>> t = polyline_parameters(points, options);
+  if (!t) return t.error();
+  const std::size_t m = std::max<std::size_t>(8 * k, 512);
+  std::vector<std::pair<std::size_t, double>> segments;
+  Eigen::MatrixX3d p = by_parameter(points, *t, at, m, &segments);
+  // The heights' cosine interpolant h(v) (the DCT-I through them: the series the surface follows in y)...
+  const double n1 = static_cast<double>(k - 1);
+  std::vector<double> beta(k, 0.0);
+  for (std::size_t n = 0; n < k; ++n) {
+    for (std::size_t i = 0; i < k; ++i)
+      beta[n] += (i == 0 || i + 1 == k ? 0.5 : 1.0) * heights[i] *
+                 std::cos(std::numbers::pi * static_cast<double>(n * i % (2 * (k - 1))) / n1);
+    beta[n] *= (n == 0 || n + 1 == k ? 1.0 : 2.0) / n1;
+  }
+  // ...and each row moved along the polyline from where the parameter put it to where the profile is at
+  // h(v): so the fit's y is the heights' series itself, and its z the least-squares cosine fit of the
+  // profile's depth along it (where the profile runs level, under the nose, the parameter still spreads
+  // the rows along it).
+  for (std::size_t r = 0; r <= m; ++r) {
+    const double v = std::numbers::pi * static_cast<double>(r) / static_cast<double>(m);
+    double h = 0.0;
+    for (std::size_t n = 0; n < k; ++n)
+      h += beta[n] * std::cos(static_cast<double>(n) * v);
+    const auto row = static_cast<Eigen::Index>(r);
+    Vec3 q = p.row(row).transpose();
+    auto [seg, w] = segments[r];
+    if (q.y() < h) { // forwards until the polyline reaches h
+      Vec3 from = q;
+      for (std::size_t s = seg; s + 1 < points.size(); ++s) {
+        const Vec3& to = points[s + 1];
+        q = to;
+        if (to.y() >= h) {
+          q = from + (h - from.y()) / (to.y() - from.y()) * (to - from);
+          break;
+        }
+        from = to;
+      }
+    } else if (q.y() > h) { // backwards
+      Vec3 from = q;
+      for (std::size_t s = seg + 1; s-- > 0;) {
+        const Vec3& to = points[s];
+        q = to;
+        if (to.y() <= h) {
+          q = from + (h - from.y()) / (to.y() - from.y()) * (to - from);
+          break;
+        }
+        from = to;
+      }
+    }
+    q.y() = h;
+    p.row(row) = q.transpose();
+  }
+  Vec3 front = points.front(), back = points.back();
+  front.y() = heights.front();
+  back.y() = heights.back();
+  std::vector<Vec3> out = fit_and_sample(p, k, front, back);
+  for (std::size_t i = 0; i < k; ++i)
+    out[i].y() = heights[i];
   return out;
 }
 

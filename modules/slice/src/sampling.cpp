@@ -3,7 +3,9 @@
 #include "detail.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 namespace pdeface::slice::detail {
 namespace {
@@ -107,6 +109,32 @@ std::vector<double> at_heights(const HeightTable& table, std::span<const double>
   return ts;
 }
 
+// The relative heights' grid for K samples: 2^-bits with 16 grid steps per sample interval on average
+// (0.3-0.4 mm on a face at 10 %), so that placing the samples there moves them by a negligible amount.
+int height_bits(std::size_t k) { return std::min(16, static_cast<int>(std::bit_width(k - 1)) + 4); }
+
+// Heights are chosen at every third curve, the joints of a layout of 3 × patches + 1 curves (every curve
+// otherwise), and blended between them.
+std::size_t anchor_stride(std::size_t n) { return n >= 4 && (n - 1) % 3 == 0 ? 3 : 1; }
+
+// Relative heights on the grid of 2^-bits, strictly ascending from exactly 0 to exactly 1: a `.pdef` stores a
+// curve's heights as these integers (docs/pdef-format.md, "Heights").
+std::vector<double> on_grid(std::span<const double> heights, int bits) {
+  const auto top = static_cast<std::int64_t>(1) << bits;
+  const std::size_t k = heights.size();
+  std::vector<std::int64_t> n(k);
+  for (std::size_t i = 0; i < k; ++i)
+    n[i] = std::llround(std::clamp(heights[i], 0.0, 1.0) * static_cast<double>(top));
+  n.front() = 0;
+  n.back() = top;
+  for (std::size_t i = 1; i + 1 < k; ++i) // ascending, with room for the ones above
+    n[i] = std::clamp(n[i], n[i - 1] + 1, top - static_cast<std::int64_t>(k - 1 - i));
+  std::vector<double> out(k);
+  for (std::size_t i = 0; i < k; ++i)
+    out[i] = std::ldexp(static_cast<double>(n[i]), -bits);
+  return out;
+}
+
 } // namespace
 
 Result<CurveSamples> sample_curves(std::span<const ProfileCurve> curves, std::size_t k,
@@ -122,7 +150,7 @@ Result<CurveSamples> sample_curves(std::span<const ProfileCurve> curves, std::si
   }
   // Where each curve's samples go, as spline parameters.
   CurveSamples out;
-  std::vector<std::vector<double>> at(n);
+  std::vector<std::vector<double>> at(n), relative;
   if (options.sampling == Sampling::Parameter) {
     for (auto& ts : at)
       for (std::size_t i = 0; i < k; ++i)
@@ -132,25 +160,61 @@ Result<CurveSamples> sample_curves(std::span<const ProfileCurve> curves, std::si
     for (std::size_t j = 0; j < n; ++j)
       tables.push_back(height_table(splines[j], curves[j].extent, options.turn_weight_mm));
     const auto increments = arc_increments(tables, 1024);
-    std::vector<double> shared;
-    for (std::size_t j = 0; j < n; ++j) {
-      std::vector<double> weights(n, 1.0);
-      if (options.sampling == Sampling::LocalHeights)
+    const int bits = height_bits(k);
+    std::vector<std::vector<double>> heights(n);
+    if (options.sampling == Sampling::SharedHeights) {
+      heights.assign(n, on_grid(even_heights(increments, std::vector<double>(n, 1.0), k), bits));
+    } else {
+      // Local heights at the anchors (every third curve: the joints), the same for a mirrored pair (the
+      // face is symmetric in the canonical frame), on the grid; between anchors blended linearly in x.
+      const std::size_t stride = anchor_stride(n);
+      const auto local = [&](std::size_t j) {
+        std::vector<double> weights(n);
         for (std::size_t i = 0; i < n; ++i)
           weights[i] = std::exp(-0.5 * std::pow((curves[i].x - curves[j].x) / options.sampling_window_mm, 2));
-      const std::vector<double> heights = options.sampling == Sampling::SharedHeights && j > 0
-                                              ? shared
-                                              : even_heights(increments, weights, k);
-      if (j == 0) shared = heights;
-      at[j] = at_heights(tables[j], heights);
-      if (j == 0 || j == n / 2) out.heights = heights;
+        return even_heights(increments, weights, k);
+      };
+      for (std::size_t a = 0; a < n; a += stride) {
+        const std::size_t mirror = n - 1 - a;
+        if (mirror < a) {
+          heights[a] = heights[mirror];
+          continue;
+        }
+        std::vector<double> h = local(a);
+        if (mirror != a) {
+          const std::vector<double> other = local(mirror);
+          for (std::size_t i = 0; i < k; ++i)
+            h[i] = 0.5 * (h[i] + other[i]);
+        }
+        heights[a] = on_grid(h, bits);
+      }
+      for (std::size_t j = 0; j < n; ++j) {
+        if (j % stride == 0) continue;
+        const std::size_t a = j - j % stride, b = a + stride;
+        const double w = (curves[j].x - curves[a].x) / (curves[b].x - curves[a].x);
+        heights[j].resize(k);
+        for (std::size_t i = 0; i < k; ++i)
+          heights[j][i] = (1 - w) * heights[a][i] + w * heights[b][i];
+      }
     }
+    for (std::size_t j = 0; j < n; ++j)
+      at[j] = at_heights(tables[j], heights[j]);
+    relative = heights;
+    out.heights = heights[n / 2];
   }
   // The samples there.
   for (std::size_t j = 0; j < n; ++j) {
     std::vector<Vec3> points;
+    std::vector<double> absolute;
+    if (!relative.empty()) {
+      const double span = curves[j].extent[1] - curves[j].extent[0];
+      for (std::size_t i = 0; i < k; ++i)
+        absolute.push_back(i + 1 == k ? curves[j].extent[1] : curves[j].extent[0] + relative[j][i] * span);
+    }
     if (options.fit == Fit::Cosine) {
-      Result<std::vector<Vec3>> samples = cosine_samples(curves[j].raw, at[j], spline);
+      Result<std::vector<Vec3>> samples = absolute.empty()
+                                              ? cosine_samples(curves[j].raw, at[j], spline)
+                                              : cosine_samples(curves[j].raw, at[j], absolute, spline);
       if (!samples) return about(name(j), std::move(samples).error());
       points = *std::move(samples);
     }
@@ -164,6 +228,8 @@ Result<CurveSamples> sample_curves(std::span<const ProfileCurve> curves, std::si
       points.clear();
       for (double t : at[j])
         points.push_back(splines[j].evaluate(t));
+      for (std::size_t i = 0; i < absolute.size(); ++i)
+        points[i].y() = absolute[i];
     }
     out.points.push_back(std::move(points));
   }

@@ -137,9 +137,11 @@ TEST(PdefHostile, MagicVersionFlagsAndTrailingBytes) {
   const std::string bytes = lossy_file();
   expect_error("PLY\n", ErrorCode::BadMagic, 0);
   expect_error("glTF\x02\x00\x00\x00", ErrorCode::BadMagic, 0);
-  std::string v2 = bytes;
-  v2[4] = 2;
-  expect_error(v2, ErrorCode::UnsupportedVersion, 4);
+  for (const char version : {1, 3}) { // 1: the development format of 2026-12-01, never released
+    std::string other = bytes;
+    other[4] = version;
+    expect_error(other, ErrorCode::UnsupportedVersion, 4);
+  }
   std::string flags = bytes;
   flags[5] = static_cast<char>(0x40);
   expect_error(flags, ErrorCode::UnsupportedFormat, 5);
@@ -204,6 +206,58 @@ TEST(PdefHostile, FieldValuesOutsideTheirRange) {
   // The paper's scheme with 11 curves (not 3p + 1).
   expect_error(splice(splice(bytes, f.section, f.scheme, 1, "\x0d"), f.section, f.curves, 1, varint(11)),
                ErrorCode::Malformed, f.curves, "paper with 11 curves");
+}
+
+// The fields of a file whose y is stored as heights (docs/pdef-format.md, "Heights"): where its anchor
+// stride, grid and flags are.
+struct HeightsFields {
+  std::string bytes;
+  std::size_t kind = 0; // the y kind (2); then the stride (1 byte here), the grid's bits, the flags
+};
+HeightsFields heights_file() {
+  Face face = synthetic_face(28, 30);
+  // The heights of a slicer's anchors: each curve's y at shared relative heights, so y costs only them.
+  for (std::size_t j = 0; j < face.curve_count(); ++j) {
+    pde::Curve& c = face.curves.samples[j];
+    const double bottom = c(0, 1), top = c(c.rows() - 1, 1);
+    for (Eigen::Index k = 0; k < c.rows(); ++k)
+      c(k, 1) =
+          bottom + (top - bottom) * std::ldexp(std::round(std::ldexp(static_cast<double>(k) / 29.0, 9)), -9);
+  }
+  HeightsFields out{encode(face).value().bytes};
+  const Face back = decode(out.bytes).value();
+  EXPECT_GT(back.storage.heights_stride, 0U) << "the file stores y as heights";
+  // The curves section: its tag and length, the runs, then 28 planes (svarints), then y's kind.
+  const std::vector<Section> parts = sections(out.bytes).value();
+  std::size_t at = parts[2].offset + 1;
+  const auto skip_varint = [&] {
+    while ((static_cast<std::uint8_t>(out.bytes[at++]) & 0x80) != 0) {
+    }
+  };
+  skip_varint(); // the section's length
+  const std::uint8_t runs = static_cast<std::uint8_t>(out.bytes[at]);
+  skip_varint();
+  for (std::size_t i = 0; i < runs + face.curve_count(); ++i)
+    skip_varint();
+  out.kind = at;
+  EXPECT_EQ(out.bytes[at], 2) << "y's kind: heights";
+  return out;
+}
+
+TEST(PdefHostile, HeightsLayoutOutsideItsRange) {
+  const HeightsFields h = heights_file();
+  const auto with = [&](std::size_t at, char value) {
+    std::string damaged = h.bytes;
+    damaged[at] = value;
+    return with_checksum(damaged);
+  };
+  ASSERT_TRUE(decode(h.bytes));
+  expect_error(with(h.kind, 3), ErrorCode::Malformed, h.kind, "y kind 3");
+  expect_error(with(h.kind + 1, 0), ErrorCode::Malformed, h.kind + 1, "anchor stride 0");
+  expect_error(with(h.kind + 1, 4), ErrorCode::Malformed, h.kind + 1, "a stride that does not divide 27");
+  expect_error(with(h.kind + 2, 0), ErrorCode::Malformed, h.kind + 2, "a grid of 2^-0");
+  expect_error(with(h.kind + 2, 17), ErrorCode::Malformed, h.kind + 2, "a grid of 2^-17");
+  expect_error(with(h.kind + 3, 2), ErrorCode::Malformed, h.kind + 3, "unknown flags");
 }
 
 TEST(PdefHostile, SectionsUnknownOutOfOrderOrTooLong) {

@@ -50,6 +50,10 @@ struct Storage {
   double step_mm = 0.0;       //!< lossy: the grid of the samples' y and z (mm)
   double plane_step_mm = 0.0; //!< lossy: the grid of the curves' planes x (mm)
   bool frame_float64 = true;  //!< the frame's numbers as float64 (else float32)
+  //! lossy: y stored as heights with an anchor every `heights_stride` curves on a grid of 2^-`heights_bits`
+  //! (0: y predicted sample by sample)
+  std::uint32_t heights_stride = 0;
+  std::uint32_t heights_bits = 0;
 };
 
 //! A face as `.pdef` holds it: J curves of K samples in the canonical frame (mm), curve j in the plane

@@ -72,4 +72,14 @@ private:
 [[nodiscard]] Result<std::vector<Vec3>>
 cosine_samples(std::span<const Vec3> points, std::span<const double> at, const SplineOptions& options = {});
 
+//! The same at given heights (mm, ascending, one per parameter): sample k is at exactly y = heights[k], and
+//! the series is fitted with y following the heights' own cosine interpolant h(v) (the series the surface
+//! follows in y between the samples): each point of the polyline the parameter puts at v is moved along the
+//! polyline to height h(v). Samples at heights a `.pdef` knows cost it almost nothing but their depth.
+//! Errors: those above, and `InvalidArgument` when the heights do not ascend or are not one per parameter.
+[[nodiscard]] Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points,
+                                                       std::span<const double> at,
+                                                       std::span<const double> heights,
+                                                       const SplineOptions& options = {});
+
 } // namespace pdeface::slice
