@@ -80,7 +80,7 @@ TEST_P(PdefRealScans, LossyFileAndItsSurfaceAtTenPercent) {
       distance, e.lossless.bytes.size());
   EXPECT_LE(e.lossy.max_surface_error, kDefaultMaxError);
   EXPECT_LE(distance, kDefaultMaxError);
-  // A face in under a kilobyte (docs/pdef-format.md has the measured sizes: 830-952 bytes), with y as the
+  // A face in under a kilobyte (docs/pdef-format.md has the measured sizes: 855-952 bytes), with y as the
   // slicer's heights.
   EXPECT_LE(e.lossy.bytes.size(), 1024U);
   EXPECT_EQ(decode(e.lossy.bytes).value().storage.heights_stride, 3U);
