@@ -112,8 +112,8 @@ void print_text(const PdefInfo& info) {
                f.storage.step_mm, f.storage.plane_step_mm,
                f.storage.heights_stride == 0
                    ? std::string("predicted")
-                   : fmt::format("as heights (anchors every {} curves, on a grid of 1/{})", f.storage.heights_stride,
-                                 1U << f.storage.heights_bits));
+                   : fmt::format("as heights (anchors every {} curves, on a grid of 1/{})",
+                                 f.storage.heights_stride, 1U << f.storage.heights_bits));
   fmt::print(
       "  curves          {} x {} samples, x = {:.1f} .. {:.1f} mm, {:.1f} x {:.1f} mm, {} samples filled\n",
       f.curve_count(), f.sample_count(), f.planes.front(), f.planes.back(), size[0], size[1],
