@@ -147,8 +147,14 @@ TEST(Profiles, SamplingsLineUpPointKAsAsked) {
 // 2^-h (h = ⌈log₂ K⌉ + 4), blended linearly in x between them, and the samples sit at exactly those heights:
 // what lets a .pdef store a curve's heights as its extent and a few small integers (docs/slice.md).
 TEST(Profiles, LocalHeightsAreTheAnchorsOnTheirGridBlended) {
-  for (const double ratio : {0.1, 0.2}) {
-    Result<ProfileSet> set = extract(face(), {.ratio = ratio});
+  // The sample face, and the same with a bump on its left cheek (its sides' own heights then differ).
+  Mesh lopsided_mesh = face();
+  for (Vec3& p : lopsided_mesh.positions)
+    p.z() += 4.0 * std::exp(-((p.x() - 35.0) * (p.x() - 35.0) + (p.y() - 10.0) * (p.y() - 10.0)) / 100.0);
+  const Mesh& lopsided = lopsided_mesh;
+  for (const auto& [mesh, ratio] :
+       {std::pair{&face(), 0.1}, std::pair{&face(), 0.2}, std::pair{&lopsided, 0.1}}) {
+    Result<ProfileSet> set = extract(*mesh, {.ratio = ratio});
     ASSERT_TRUE(set) << set.error().message;
     const std::size_t n = set->curves.size(), k = set->k;
     ASSERT_EQ((n - 1) % 3, 0U);

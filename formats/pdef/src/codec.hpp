@@ -67,6 +67,11 @@ struct Quantised {
   Heights heights;
 };
 
+//! round(n / d) for d > 0, halves away from zero (n ± d/2 stays within 64 bits where 2n might not).
+[[nodiscard]] inline std::int64_t rounded_div(std::int64_t n, std::int64_t d) {
+  return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
+}
+
 //! Signed ↔ unsigned symbols (0, −1, 1, −2, … ↔ 0, 1, 2, 3, …), for values within ±2^31.
 [[nodiscard]] inline std::uint32_t zigzag32(std::int64_t v) {
   return static_cast<std::uint32_t>((static_cast<std::uint64_t>(v) << 1) ^

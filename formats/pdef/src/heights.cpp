@@ -13,11 +13,6 @@
 namespace pdeface::pdef::detail {
 namespace {
 
-// round(n / d) for d > 0, halves away from zero.
-std::int64_t rounded_div(std::int64_t n, std::int64_t d) {
-  return n >= 0 ? (n + d / 2) / d : -((-n + d / 2) / d);
-}
-
 std::size_t anchors(const Heights& h, std::size_t curves) { return (curves - 1) / h.stride + 1; }
 
 constexpr std::uint8_t kSymmetric = 0x01;
@@ -37,10 +32,10 @@ std::vector<std::uint32_t> extent_symbols(const Heights& h) {
 // The prediction of anchor a's interior height k (1..K−2) from those decoded before it: its mirror's (the
 // anchors' heights of a face are symmetric), else the previous anchor's plus the difference one sample down,
 // else (the first anchor) straight on from the two below. Heights 0 and 2^bits stand at k = 0 and K − 1.
-std::int64_t predict_height(const Heights& h, std::span<const std::int64_t> table, std::size_t count,
-                            std::size_t samples, std::size_t a, std::size_t k) {
+std::int64_t predict_height(const Heights& h, std::size_t count, std::size_t samples, std::size_t a,
+                            std::size_t k) {
   const std::size_t inner = samples - 2;
-  const auto at = [&](std::size_t aa, std::size_t kk) { return kk == 0 ? 0 : table[aa * inner + kk - 1]; };
+  const auto at = [&](std::size_t aa, std::size_t kk) { return kk == 0 ? 0 : h.table[aa * inner + kk - 1]; };
   const std::size_t mirror = count - 1 - a;
   if (mirror < a) return at(mirror, k);
   if (a > 0) return at(a - 1, k) + at(a, k - 1) - at(a - 1, k - 1);
@@ -94,14 +89,15 @@ std::optional<HeightsFit> fit_heights(std::span<const double> y, std::span<const
       h.stride = stride;
       h.bits = bits;
       const std::int64_t one = std::int64_t{1} << bits;
-      for (std::size_t j = 0; j < curves; j += stride)
+      for (std::size_t j = 0; j < curves; j += stride) {
+        const double lo = static_cast<double>(h.bottom[j] * grid.step) * kStepUnit;
+        const double hi = static_cast<double>(h.top[j] * grid.step) * kStepUnit;
         for (std::size_t k = 1; k + 1 < samples; ++k) {
-          const double lo = static_cast<double>(h.bottom[j] * grid.step) * kStepUnit;
-          const double hi = static_cast<double>(h.top[j] * grid.step) * kStepUnit;
           const double relative = (y[j * samples + k] - lo) / (hi - lo);
           h.table.push_back(
               std::clamp<std::int64_t>(std::llround(relative * static_cast<double>(one)), 0, one));
         }
+      }
       const std::size_t count = anchors(h, curves), inner = samples - 2;
       h.symmetric = true;
       for (std::size_t a = 0; a < count && h.symmetric; ++a)
@@ -139,8 +135,7 @@ std::string write_heights(const Heights& h, std::span<const std::int64_t> residu
   std::vector<std::uint32_t> table;
   for (std::size_t a = 0; a < (h.symmetric ? (count + 1) / 2 : count); ++a)
     for (std::size_t k = 1; k + 1 < samples; ++k)
-      table.push_back(
-          zigzag32(h.table[a * inner + k - 1] - predict_height(h, h.table, count, samples, a, k)));
+      table.push_back(zigzag32(h.table[a * inner + k - 1] - predict_height(h, count, samples, a, k)));
   w.bytes(encode_classes(table));
   std::vector<std::uint32_t> rest;
   for (std::size_t j = 0; j < curves; ++j)
@@ -210,8 +205,7 @@ bool read_heights(Reader& r, std::span<const std::int64_t> planes, std::size_t s
         h.table[a * inner + k - 1] = h.table[(count - 1 - a) * inner + k - 1];
         continue;
       }
-      const std::int64_t v =
-          predict_height(h, h.table, count, samples, a, k) + unzigzag32(table[a * inner + k - 1]);
+      const std::int64_t v = predict_height(h, count, samples, a, k) + unzigzag32(table[a * inner + k - 1]);
       if (v < 0 || v > one)
         return r.fail(ErrorCode::Malformed,
                       fmt::format("anchor {}'s height {} is outside 0..2^{}", a, k, bits), at);

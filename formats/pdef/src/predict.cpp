@@ -16,11 +16,6 @@ namespace {
 
 constexpr std::int64_t kFeatureLimit = std::int64_t{1} << 30;
 
-// round(n / d) for d > 0, halves away from zero.
-std::int64_t rounded_div(std::int64_t n, std::int64_t d) {
-  return n >= 0 ? (2 * n + d) / (2 * d) : -((-2 * n + d) / (2 * d));
-}
-
 // The features of sample (j, k), j >= 2 (docs/pdef-format.md): differences between the curve and the one
 // before along the curve, and the previous two curves' difference scaled by the planes' spacing.
 std::array<std::int64_t, kFeatures> features(std::span<const std::int64_t> a,

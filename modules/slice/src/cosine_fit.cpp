@@ -13,6 +13,22 @@ namespace pdeface::slice {
 
 namespace {
 
+// Σ c_n cos(n v) over the rows of `c` (any number of columns), by the recurrence
+// cos((n+1) v) = 2 cos v cos(n v) − cos((n−1) v).
+template <typename Coefficients> auto cosine_series(const Coefficients& c, double v) {
+  using Row = Eigen::Matrix<double, 1, Coefficients::ColsAtCompileTime>;
+  Row sum = c.row(0);
+  double previous = 1.0, current = std::cos(v);
+  const double twice = 2.0 * current;
+  for (Eigen::Index n = 1; n < c.rows(); ++n) {
+    sum += current * c.row(n);
+    const double next = twice * current - previous;
+    previous = current;
+    current = next;
+  }
+  return sum;
+}
+
 // The K samples at v_k = kπ/(K − 1) of the least-squares fit of the first K cosines to the M + 1 rows of `p`
 // (the curve at v_r = rπ/M), held to `front` and `back` at its ends.
 std::vector<Vec3> fit_and_sample(const Eigen::MatrixX3d& p, std::size_t k, const Vec3& front,
@@ -56,34 +72,18 @@ std::vector<Vec3> fit_and_sample(const Eigen::MatrixX3d& p, std::size_t k, const
   alpha += ginv_ct * (c * ginv_ct).ldlt().solve(miss);
 
   std::vector<Vec3> out(k);
-  for (std::size_t i = 0; i < k; ++i) {
-    const double v = dv * static_cast<double>(i);
-    Vec3 q = alpha.row(0).transpose();
-    double previous = 1.0, current = std::cos(v);
-    const double twice = 2.0 * current;
-    for (std::size_t n = 1; n < k; ++n) {
-      q += current * alpha.row(static_cast<Eigen::Index>(n)).transpose();
-      const double next = twice * current - previous;
-      previous = current;
-      current = next;
-    }
-    out[i] = q;
-  }
+  for (std::size_t i = 0; i < k; ++i)
+    out[i] = cosine_series(alpha, dv * static_cast<double>(i)).transpose();
   out.front() = front; // exactly, whatever the rounding
   out.back() = back;
   return out;
 }
 
-} // namespace
-
-namespace {
-
 // The polyline at M + 1 values of v evenly over [0, π], v following the parameter piecewise linearly through
-// (at[k], v_k): the parameter of v_m is interpolated between the samples' parameters. Each row's segment and
-// the fraction along it in `segments` when given.
+// (at[k], v_k): the parameter of v_m is interpolated between the samples' parameters. Each row's segment in
+// `segments` when given.
 Eigen::MatrixX3d by_parameter(std::span<const Vec3> points, std::span<const double> t,
-                              std::span<const double> at, std::size_t m,
-                              std::vector<std::pair<std::size_t, double>>* segments) {
+                              std::span<const double> at, std::size_t m, std::vector<std::size_t>* segments) {
   const std::size_t k = at.size();
   const double dv = std::numbers::pi / static_cast<double>(k - 1);
   Eigen::MatrixX3d p(static_cast<Eigen::Index>(m + 1), 3);
@@ -98,9 +98,25 @@ Eigen::MatrixX3d by_parameter(std::span<const Vec3> points, std::span<const doub
     const double span = t[seg + 1] - t[seg];
     const double w = span > 0.0 ? std::clamp((u - t[seg]) / span, 0.0, 1.0) : 0.0;
     p.row(static_cast<Eigen::Index>(r)) = (points[seg] + w * (points[seg + 1] - points[seg])).transpose();
-    if (segments != nullptr) segments->emplace_back(seg, w);
+    if (segments != nullptr) segments->push_back(seg);
   }
   return p;
+}
+
+// The point where the polyline, walked from `q` on segment `seg` towards height h (forwards over the points
+// after the segment when q is below h, backwards over its start and those before when above), first reaches
+// h; the last point walked when it never does.
+Vec3 walk_to_height(std::span<const Vec3> points, std::size_t seg, const Vec3& q, double h) {
+  if (q.y() == h) return q;
+  const bool up = q.y() < h;
+  const std::size_t ahead = up ? points.size() - seg - 1 : seg + 1;
+  Vec3 from = q;
+  for (std::size_t i = 0; i < ahead; ++i) {
+    const Vec3& to = points[up ? seg + 1 + i : seg - i];
+    if (up ? to.y() >= h : to.y() <= h) return from + (h - from.y()) / (to.y() - from.y()) * (to - from);
+    from = to;
+  }
+  return from;
 }
 
 std::optional<Error> check_parameters(std::span<const double> at) {
@@ -139,16 +155,17 @@ Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points, std::span
   Result<std::vector<double>> t = polyline_parameters(points, options);
   if (!t) return t.error();
   const std::size_t m = std::max<std::size_t>(8 * k, 512);
-  std::vector<std::pair<std::size_t, double>> segments;
+  std::vector<std::size_t> segments;
   Eigen::MatrixX3d p = by_parameter(points, *t, at, m, &segments);
   // The heights' cosine interpolant h(v) (the DCT-I through them: the series the surface follows in y)...
   const double n1 = static_cast<double>(k - 1);
-  std::vector<double> beta(k, 0.0);
+  Eigen::VectorXd beta = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(k));
   for (std::size_t n = 0; n < k; ++n) {
+    const auto row = static_cast<Eigen::Index>(n);
     for (std::size_t i = 0; i < k; ++i)
-      beta[n] += (i == 0 || i + 1 == k ? 0.5 : 1.0) * heights[i] *
-                 std::cos(std::numbers::pi * static_cast<double>(n * i % (2 * (k - 1))) / n1);
-    beta[n] *= (n == 0 || n + 1 == k ? 1.0 : 2.0) / n1;
+      beta(row) += (i == 0 || i + 1 == k ? 0.5 : 1.0) * heights[i] *
+                   std::cos(std::numbers::pi * static_cast<double>(n * i % (2 * (k - 1))) / n1);
+    beta(row) *= (n == 0 || n + 1 == k ? 1.0 : 2.0) / n1;
   }
   // ...and each row moved along the polyline from where the parameter put it to where the profile is at
   // h(v): so the fit's y is the heights' series itself, and its z the least-squares cosine fit of the
@@ -156,35 +173,9 @@ Result<std::vector<Vec3>> cosine_samples(std::span<const Vec3> points, std::span
   // the rows along it).
   for (std::size_t r = 0; r <= m; ++r) {
     const double v = std::numbers::pi * static_cast<double>(r) / static_cast<double>(m);
-    double h = 0.0;
-    for (std::size_t n = 0; n < k; ++n)
-      h += beta[n] * std::cos(static_cast<double>(n) * v);
+    const double h = cosine_series(beta, v)(0);
     const auto row = static_cast<Eigen::Index>(r);
-    Vec3 q = p.row(row).transpose();
-    auto [seg, w] = segments[r];
-    if (q.y() < h) { // forwards until the polyline reaches h
-      Vec3 from = q;
-      for (std::size_t s = seg; s + 1 < points.size(); ++s) {
-        const Vec3& to = points[s + 1];
-        q = to;
-        if (to.y() >= h) {
-          q = from + (h - from.y()) / (to.y() - from.y()) * (to - from);
-          break;
-        }
-        from = to;
-      }
-    } else if (q.y() > h) { // backwards
-      Vec3 from = q;
-      for (std::size_t s = seg + 1; s-- > 0;) {
-        const Vec3& to = points[s];
-        q = to;
-        if (to.y() <= h) {
-          q = from + (h - from.y()) / (to.y() - from.y()) * (to - from);
-          break;
-        }
-        from = to;
-      }
-    }
+    Vec3 q = walk_to_height(points, segments[r], p.row(row).transpose(), h);
     q.y() = h;
     p.row(row) = q.transpose();
   }

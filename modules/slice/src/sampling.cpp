@@ -150,7 +150,7 @@ Result<CurveSamples> sample_curves(std::span<const ProfileCurve> curves, std::si
   }
   // Where each curve's samples go, as spline parameters.
   CurveSamples out;
-  std::vector<std::vector<double>> at(n), relative;
+  std::vector<std::vector<double>> at(n), heights; // heights: relative (0 at a curve's bottom, 1 at its top)
   if (options.sampling == Sampling::Parameter) {
     for (auto& ts : at)
       for (std::size_t i = 0; i < k; ++i)
@@ -161,7 +161,7 @@ Result<CurveSamples> sample_curves(std::span<const ProfileCurve> curves, std::si
       tables.push_back(height_table(splines[j], curves[j].extent, options.turn_weight_mm));
     const auto increments = arc_increments(tables, 1024);
     const int bits = height_bits(k);
-    std::vector<std::vector<double>> heights(n);
+    heights.resize(n);
     if (options.sampling == Sampling::SharedHeights) {
       heights.assign(n, on_grid(even_heights(increments, std::vector<double>(n, 1.0), k), bits));
     } else {
@@ -199,17 +199,16 @@ Result<CurveSamples> sample_curves(std::span<const ProfileCurve> curves, std::si
     }
     for (std::size_t j = 0; j < n; ++j)
       at[j] = at_heights(tables[j], heights[j]);
-    relative = heights;
     out.heights = heights[n / 2];
   }
   // The samples there.
   for (std::size_t j = 0; j < n; ++j) {
     std::vector<Vec3> points;
     std::vector<double> absolute;
-    if (!relative.empty()) {
+    if (!heights.empty()) {
       const double span = curves[j].extent[1] - curves[j].extent[0];
       for (std::size_t i = 0; i < k; ++i)
-        absolute.push_back(i + 1 == k ? curves[j].extent[1] : curves[j].extent[0] + relative[j][i] * span);
+        absolute.push_back(i + 1 == k ? curves[j].extent[1] : curves[j].extent[0] + heights[j][i] * span);
     }
     if (options.fit == Fit::Cosine) {
       Result<std::vector<Vec3>> samples = absolute.empty()
