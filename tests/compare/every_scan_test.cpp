@@ -5,6 +5,7 @@
 
 #include "pdeface/compare/fidelity.hpp"
 #include "pdeface/compare/reconstruct.hpp"
+#include "pdeface/compare/report.hpp"
 #include "pdeface/formats/formats.hpp"
 
 #include "pdeface_test.hpp"
@@ -41,6 +42,32 @@ TEST_P(EveryScan, ReconstructsAndCoversItsFace) {
     EXPECT_GE(f->coverage.share, 0.97);
     EXPECT_LE(f->coverage.distance.mean, 0.5);
     EXPECT_LE(f->surface.b_to_a.mean, 0.3);
+  }
+}
+
+// A lossless copy of the scan (its raw files, gzipped or not: float32 positions, as read) measures 0 both
+// ways: every sample of the scan's face is a point of its own surface, and the copy's samples lie on it.
+TEST_P(EveryScan, LosslessCopiesMeasureZero) {
+  PDEFACE_FACE_OR_SKIP(path, GetParam());
+  const Result<formats::LoadedMesh> scan = formats::read_mesh(path);
+  ASSERT_TRUE(scan) << scan.error().to_string();
+  CompareOptions options;
+  options.draco_bits.clear();
+  options.budgets.clear();
+  options.budgets_at_pde = false;
+  options.ratios.clear();
+  options.threads = 1;
+  const Result<ScanReport> report = compare_scan(scan->mesh, GetParam(), options);
+  ASSERT_TRUE(report) << report.error().to_string();
+  ASSERT_GE(report->variants.size(), 4U);
+  for (const Variant& v : report->variants) {
+    ASSERT_TRUE(v.fidelity) << v.name << ": " << v.failure;
+    const MeshFidelity& f = *v.fidelity;
+    EXPECT_EQ(f.coverage.share, 1.0) << v.name;
+    EXPECT_LE(f.coverage.distance.max, 1e-4) << v.name << " mask -> mesh";
+    EXPECT_LE(f.to_scan.max, 1e-4) << v.name << " mesh -> scan";
+    EXPECT_GT(f.coverage.distance.samples, 1000U) << v.name;
+    EXPECT_GT(f.to_scan.samples, 1000U) << v.name;
   }
 }
 

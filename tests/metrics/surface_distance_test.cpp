@@ -61,8 +61,24 @@ TEST(SurfaceDistance, PointCloudsMeasureToTheirPoints) {
   Mesh cloud;
   cloud.positions = {{0, 0, 0}, {10, 0, 0}};
   const SurfaceDistance distance(cloud);
-  EXPECT_DOUBLE_EQ(distance.distance(Vec3(3, 4, 0)), 5.0);
+  EXPECT_DOUBLE_EQ(distance.distance(Vec3(3, 4, 0)), 5.0); // too few points for a plane: to the point
   EXPECT_THROW(SurfaceDistance(Mesh{}), std::invalid_argument);
+}
+
+// A cloud sampled every 2 mm from the plane z = 0 is the plane: a query 0.1 mm above it between its
+// points is 0.1 mm away (not the ~1.4 mm to the nearest point), a point of the cloud is at 0, and a
+// query beyond the cloud's edge is measured to its nearest point.
+TEST(SurfaceDistance, PointCloudsMeasureToTheirTangentPlanes) {
+  Mesh cloud;
+  for (int j = 0; j <= 20; ++j)
+    for (int i = 0; i <= 20; ++i)
+      cloud.positions.emplace_back(2.0 * i, 2.0 * j, 0.0);
+  const SurfaceDistance distance(cloud);
+  EXPECT_NEAR(distance.distance(Vec3(11, 11, 0.1)), 0.1, 1e-9);
+  EXPECT_NEAR(distance.distance(Vec3(11, 11, -0.3)), 0.3, 1e-9);
+  EXPECT_NEAR((distance.nearest(Vec3(11, 11, 0.1)).point - Vec3(11, 11, 0)).norm(), 0.0, 1e-9);
+  EXPECT_EQ(distance.distance(cloud.positions[200]), 0.0);
+  EXPECT_NEAR(distance.distance(Vec3(60, 20, 0.1)), std::hypot(20.0, 0.1), 1e-9);
 }
 
 Mesh grid(int n, double step, double z) {

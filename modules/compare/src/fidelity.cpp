@@ -1,5 +1,6 @@
 #include "pdeface/compare/fidelity.hpp"
 
+#include "pdeface/metrics/front_view.hpp"
 #include "pdeface/metrics/profile_error.hpp"
 #include "pdeface/slice/profile.hpp"
 
@@ -48,32 +49,15 @@ std::vector<metrics::Polyline> pieces(const std::vector<Vec3>& points, const Vec
   return out;
 }
 
-// The scan seen from the front: its sections every `step` mm across |x| <= half_width, each the front-most
-// surface along the height.
-struct FrontView {
-  double x0 = 0.0, step = 1.0;
-  std::vector<slice::Section> columns;
-  [[nodiscard]] double x_of(std::size_t column) const { return x0 + static_cast<double>(column) * step; }
-  //! The front-most surface point at (x, y), if the scan has surface there.
-  [[nodiscard]] std::optional<Vec3> front(double x, double y) const {
-    const double k = std::round((x - x0) / step);
-    if (k < 0 || k >= static_cast<double>(columns.size())) return std::nullopt;
-    return slice::section_at(columns[static_cast<std::size_t>(k)], {}, y);
-  }
-  //! Behind the front-most surface by more than `tolerance` (the inside of the mouth, of a nostril).
-  [[nodiscard]] bool hidden(const Vec3& p, double tolerance) const {
-    const std::optional<Vec3> f = front(p.x(), p.y());
-    return f && p.z() < f->z() - tolerance;
-  }
-};
+// The scan seen from the front over |x| <= half_width and the heights a face can have (the canonical frame's
+// origin is the nose tip), a cell every `step` mm.
+metrics::FrontView front_view(const Mesh& scan, double half_width, double y0, double y1, double step) {
+  return {scan, -half_width, half_width, y0, y1, step};
+}
 
-FrontView front_view(const Mesh& scan, double half_width, double step) {
-  FrontView view{-half_width, step, {}};
-  std::vector<double> offsets;
-  for (std::size_t k = 0; view.x_of(k) <= half_width + 0.5 * step; ++k)
-    offsets.push_back(view.x_of(k));
-  view.columns = slice::sections(scan, Vec3::UnitX(), offsets, {});
-  return view;
+metrics::FrontView front_view(const Mesh& scan, const slice::FaceMask& mask, double half_width, double step) {
+  return front_view(scan, half_width, mask.centre_y - mask.half_height - step,
+                    mask.centre_y + mask.half_height + step, step);
 }
 
 } // namespace
@@ -89,20 +73,13 @@ FaceRegion face_region(const slice::ProfileSet& profiles, double depth_margin_mm
 namespace {
 
 // The scan's face as the coverage measures it: the mask is a region of the front view, so its share is
-// measured per unit of that view's area, at the scan's front-most surface on a grid over the mask. Surface
-// that turns away from the viewer (the cheeks' sides, under the chin) counts for the area it shows, not
-// for its own area, and what the front hides (the inside of the mouth and nostrils) is not the face.
-std::vector<Vec3> mask_samples(const slice::FaceMask& mask, const FrontView& view) {
-  std::vector<Vec3> out;
-  const double step = view.step;
-  for (std::size_t k = 0; k < view.columns.size(); ++k) {
-    const std::optional<std::array<double, 2>> h = mask.heights_at(view.x_of(k));
-    if (!h) continue;
-    for (double y = std::ceil((*h)[0] / step) * step; y <= (*h)[1]; y += step)
-      if (const std::optional<Vec3> p = slice::section_at(view.columns[k], {}, y); p && mask.contains(*p))
-        out.push_back(*p);
-  }
-  return out;
+// measured per unit of that view's area, at the scan's front-most surface in every cell of the view inside
+// the mask. Surface that turns away from the viewer (the cheeks' sides, under the chin) counts for the area
+// it shows, not for its own area; what the front hides (the inside of the mouth and nostrils) is not the
+// face; a hole shows nothing and is not sampled. Every sample is a point of the scan's own surface (a
+// triangle's, or a point of a cloud), so a lossless copy of the scan measures 0.
+std::vector<Vec3> mask_samples(const slice::FaceMask& mask, const metrics::FrontView& view) {
+  return view.samples([&](const Vec3& p) { return mask.contains(p); });
 }
 
 Result<Coverage> coverage_from(std::span<const Vec3> samples, const Mesh& reconstruction,
@@ -156,7 +133,7 @@ std::array<double, 4> evaluation_errors(std::span<const slice::EvaluationProfile
 Result<Coverage> measure_coverage(const Mesh& scan, const slice::FaceMask& mask, const Mesh& reconstruction,
                                   const FidelityOptions& options) {
   if (scan.positions.empty()) return make_error(ErrorCode::InvalidArgument, "coverage: a mesh is empty");
-  const FrontView view = front_view(scan, mask.half_width, options.sample_spacing_mm);
+  const metrics::FrontView view = front_view(scan, mask, mask.half_width, options.sample_spacing_mm);
   return coverage_from(mask_samples(mask, view), reconstruction, options);
 }
 
@@ -198,8 +175,11 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
   // The scan's side counts what a viewer sees from the front: the inside of the mouth and the nostrils,
   // which no front-most profile holds, are not the face.
   const FaceRegion region = face_region(profiles, options.depth_margin_mm);
-  const FrontView view = front_view(scan, std::max(profiles.mask.half_width, profiles.border_mm) + 1.0,
-                                    options.sample_spacing_mm);
+  const slice::FaceMask& mask = profiles.mask;
+  const metrics::FrontView view = front_view(
+      scan, std::max(mask.half_width, profiles.border_mm) + 1.0,
+      std::min(mask.centre_y - mask.half_height, profiles.height_range[0]) - 1.0,
+      std::max(mask.centre_y + mask.half_height, profiles.height_range[1]) + 1.0, options.sample_spacing_mm);
   Result<metrics::TwoSidedDistance> distance = metrics::surface_distance(
       scan, reconstruction,
       {.spacing = options.sample_spacing_mm,
@@ -219,13 +199,13 @@ Result<Fidelity> measure_fidelity(const Mesh& scan, const slice::ProfileSet& pro
 struct FaceYardstick::State {
   State(const Mesh& canonical, const slice::ProfileSet& profiles, const FidelityOptions& fidelity)
       : scan(canonical), mask(profiles.mask), evaluation(profiles.evaluation), options(fidelity),
-        view(front_view(scan, mask.half_width + 1.0, options.sample_spacing_mm)),
+        view(front_view(scan, mask, mask.half_width + 1.0, options.sample_spacing_mm)),
         samples(mask_samples(mask, view)), to_scan(scan) {}
   Mesh scan;
   slice::FaceMask mask;
   std::vector<slice::EvaluationProfile> evaluation;
   FidelityOptions options;
-  FrontView view;
+  metrics::FrontView view;
   std::vector<Vec3> samples;        // the scan's face: front-most samples inside the mask
   metrics::SurfaceDistance to_scan; // over `scan`, which lives as long as this
 };
@@ -249,7 +229,7 @@ Result<MeshFidelity> FaceYardstick::measure(const Mesh& mesh) const {
   MeshFidelity f{.coverage = *coverage};
   std::vector<double> distances;
   for (const Vec3& p : metrics::sample_surface(mesh, s.options.sample_spacing_mm))
-    if (s.mask.contains(p) && s.view.front(p.x(), p.y())) distances.push_back(s.to_scan.distance(p));
+    if (s.mask.contains(p) && s.view.sees_surface(p.x(), p.y())) distances.push_back(s.to_scan.distance(p));
   f.to_scan = metrics::statistics(std::move(distances));
   if (f.to_scan.samples == 0) {
     const double nan = std::numeric_limits<double>::quiet_NaN();

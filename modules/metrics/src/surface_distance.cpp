@@ -1,5 +1,6 @@
 #include "pdeface/metrics/surface_distance.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -36,6 +37,7 @@ SurfaceDistance::SurfaceDistance(const Mesh& mesh) : mesh_(&mesh) {
   if (mesh.positions.empty()) throw std::invalid_argument("SurfaceDistance: the mesh has no vertices");
   if (mesh.is_point_cloud()) {
     points_.emplace(mesh.positions);
+    fit_tangent_planes();
     return;
   }
   std::vector<Vec3> centroids(mesh.triangle_count());
@@ -47,6 +49,29 @@ SurfaceDistance::SurfaceDistance(const Mesh& mesh) : mesh_(&mesh) {
   std::iota(order_.begin(), order_.end(), 0U);
   nodes_.reserve(2 * mesh.triangle_count() / 4 + 1);
   build(0, static_cast<std::uint32_t>(order_.size()), centroids);
+}
+
+void SurfaceDistance::fit_tangent_planes() {
+  constexpr std::size_t kNeighbours = 10;
+  const std::size_t n = mesh_->positions.size();
+  normals_.assign(n, Vec3::Zero());
+  reach_.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::vector<PointIndex::Neighbour> near = points_->nearest(mesh_->positions[i], kNeighbours);
+    if (near.size() < 3) continue; // no plane: the point alone (reach 0)
+    Vec3 centre = Vec3::Zero();
+    for (const auto& q : near)
+      centre += mesh_->positions[q.index];
+    centre /= static_cast<double>(near.size());
+    Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+    for (const auto& q : near) {
+      const Vec3 d = mesh_->positions[q.index] - centre;
+      scatter += d * d.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+    normals_[i] = solver.eigenvectors().col(0);
+    reach_[i] = near.back().distance; // the neighbourhood the plane was fitted to
+  }
 }
 
 std::uint32_t SurfaceDistance::build(std::uint32_t begin, std::uint32_t end, std::vector<Vec3>& centroids) {
@@ -88,7 +113,12 @@ double squared_distance(const Box& box, const Vec3& p) {
 SurfaceDistance::Nearest SurfaceDistance::nearest(const Vec3& query) const {
   if (points_) {
     const PointIndex::Neighbour n = points_->nearest(query);
-    return {mesh_->positions[n.index], n.distance, n.index};
+    const Vec3& p = mesh_->positions[n.index];
+    const Vec3& normal = normals_[n.index];
+    const double along = normal.dot(query - p);
+    const Vec3 foot = query - along * normal;
+    if ((foot - p).norm() > reach_[n.index]) return {p, n.distance, n.index};
+    return {foot, std::abs(along), n.index};
   }
   Nearest best{Vec3::Zero(), std::numeric_limits<double>::infinity(), 0};
   double best_squared = std::numeric_limits<double>::infinity();
