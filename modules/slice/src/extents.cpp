@@ -33,12 +33,14 @@ Extents curve_extents(std::span<const Section> cuts, std::span<const ProfilePlan
                              {.limit = limits[0],
                               .max_hole_mm = max_hole,
                               .turn_from = mouth,
-                              .max_turn_deg = options.max_turn_deg});
+                              .max_turn_deg = options.max_turn_deg,
+                              .min_front = region.min_z});
     const Reach up = reach(cuts[j], axes, start,
                            {.limit = limits[1],
                             .max_hole_mm = max_hole,
                             .turn_from = eyes,
-                            .max_turn_deg = options.max_turn_deg});
+                            .max_turn_deg = options.max_turn_deg,
+                            .min_front = region.min_z});
     out.extent.push_back({down.end, up.end});
     out.ends.push_back({down.why, up.why});
   }
@@ -73,7 +75,7 @@ Extents curve_extents(std::span<const Section> cuts, std::span<const ProfilePlan
   // Extents may not change across the curves faster than the region's own outline does there (a curve cut
   // short by a hole at its end would shear the surface): the largest envelope within every curve's extent
   // that keeps to that slope.
-  double slope = 1.0;
+  double slope = 2.0;
   for (std::size_t j = 1; j < planes.size(); ++j)
     for (double x : {planes[j - 1].x, planes[j].x})
       if (const auto h = region.heights_at(x); h && std::abs(x) > 0.0) {
@@ -163,7 +165,7 @@ std::vector<std::string> missing_parts(const ProfileSet& set, const PlaneLayout&
     while (j < set.curves.size()) {
       auto short_by = [&](const ProfileCurve& c) {
         const auto h = set.mask.heights_at(c.x);
-        if (!h || c.ends[end] == ReachEnd::Limit) return 0.0;
+        if (!h || c.ends[end] == ReachEnd::Limit || c.ends[end] == ReachEnd::Behind) return 0.0;
         return end == 0 ? c.extent[0] - (*h)[0] : (*h)[1] - c.extent[1];
       };
       if (short_by(set.curves[j]) <= 2.0) {
@@ -187,7 +189,9 @@ std::vector<std::string> missing_parts(const ProfileSet& set, const PlaneLayout&
           fmt::format("the face's {} side beyond |x| = {:.1f} mm (the face's outline reaches {:.1f} mm): "
                       "the scan {} there",
                       side == 0 ? "right" : "left", layout.border[side], set.mask.half_width,
-                      layout.border_limited[side] == ReachEnd::TurnsAway ? "turns away" : "ends"));
+                      layout.border_limited[side] == ReachEnd::TurnsAway ? "turns away"
+                      : layout.border_limited[side] == ReachEnd::Behind  ? "goes behind the face"
+                                                                         : "ends"));
   return out;
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace pdeface::slice {
 namespace {
@@ -102,13 +103,14 @@ Result<PlaneLayout> profile_planes(const Mesh& canonical, const align::Landmarks
   Result<FaceMask> mask = face_mask(landmarks, options.mask);
   if (!mask) return mask.error();
   PlaneLayout layout;
-  layout.mask = *mask;
 
   // One pass over the scan for the horizontal sections: the eye line (for W) and three heights across the
   // middle of the face mask, on which the border must still be on the face.
   layout.eye_height_mm = eye_line_height(landmarks);
   const double c = mask->centre_y, b = mask->half_height;
-  const std::array<double, 4> heights{layout.eye_height_mm, c - 0.35 * b, c, c + 0.35 * b};
+  // The nose tip's height too: every curve's walk starts there, so the border must be on the face there.
+  const std::array<double, 5> heights{layout.eye_height_mm, c - 0.35 * b, c, c + 0.35 * b,
+                                      landmarks[Landmark::NoseTip]->y()};
   const std::vector<Section> cuts =
       sections(canonical, Vec3::UnitY(), heights, {Vec3::UnitX(), Vec3::UnitZ()}, section);
   Result<double> width = width_along(cuts[0], landmarks, layout.eye_height_mm, section);
@@ -117,29 +119,78 @@ Result<PlaneLayout> profile_planes(const Mesh& canonical, const align::Landmarks
   const double inner = mean_abs_x(landmarks, Landmark::EyeInnerLeft, Landmark::EyeInnerRight);
   const double outer = mean_abs_x(landmarks, Landmark::EyeOuterLeft, Landmark::EyeOuterRight);
 
+  // How far out the face goes on each side at the three heights: to the mask's outline (grown by
+  // `border_beyond_mask`), unless the surface ends or turns away from the viewer first. Holes across the
+  // face (an open mouth, the eyes of a mesh without eyeballs) do not end it.
+  const ProfileAxes across{Vec3::UnitX(), Vec3::UnitZ()};
+  const auto walk = [&](std::size_t k, double sign, double limit) {
+    return reach(cuts[k], across, 0.0,
+                 {.limit = sign * limit,
+                  .max_hole_mm = std::max(section.max_gap_mm, mask->half_width),
+                  .turn_from = sign * outer,
+                  .max_turn_deg = options.max_turn_deg,
+                  .min_front = mask->min_z});
+  };
+  // The mask reaches across the cheeks to where the face turns away from the viewer in front of the ears
+  // (its silhouette seen from the front) or goes further back than the face (hair over the ears), when
+  // that is nearer than the landmarks' outline: the wider side's
+  // silhouette, at the height where it is nearest. A side that only ends (a scan cut short) does not
+  // narrow it.
+  double silhouette = 0.0;
+  for (std::size_t side = 0; side < 2; ++side) {
+    double nearest = std::numeric_limits<double>::infinity();
+    for (std::size_t k = 1; k < cuts.size(); ++k) {
+      const Reach r = walk(k, side == 0 ? -1.0 : 1.0, mask->half_width);
+      const double w = (heights[k] - c) / b;
+      if ((r.why == ReachEnd::TurnsAway || r.why == ReachEnd::Behind) && std::abs(w) < 1.0)
+        nearest = std::min(nearest, std::abs(r.end) / std::sqrt(1.0 - w * w));
+    }
+    silhouette = std::max(silhouette, nearest);
+  }
+  if (silhouette < mask->half_width) mask->half_width = std::max(silhouette, outer);
+  layout.mask = *mask;
+
   // The face border, each side on its own: beyond the mask, unless the surface ends or turns away first.
   // Planes closer than a mesh edge still cut it well (sections interpolate inside triangles): only joints
   // that all but coincide are an error.
   const double min_gap = options.min_spacing_mm;
   const double target = options.border_beyond_mask * mask->half_width;
-  const ProfileAxes across{Vec3::UnitX(), Vec3::UnitZ()};
   std::array<std::array<double, 5>, 2> features{};
   for (std::size_t side = 0; side < 2; ++side) {
     const double sign = side == 0 ? -1.0 : 1.0;
     double border = target;
     for (std::size_t k = 1; k < cuts.size(); ++k) {
-      // Holes across the face (an open mouth, the eyes of a mesh without eyeballs) do not end it.
-      const Reach r = reach(cuts[k], across, 0.0,
-                            {.limit = sign * target,
-                             .max_hole_mm = std::max(section.max_gap_mm, mask->half_width),
-                             .turn_from = sign * outer,
-                             .max_turn_deg = options.max_turn_deg});
+      const Reach r = walk(k, sign, target);
       if (std::abs(r.end) < border) {
         border = std::abs(r.end);
         layout.border_limited[side] = r.why;
       }
     }
     layout.border[side] = border;
+  }
+  // Every curve's walk starts at the nose tip's height: the border plane must meet the face there, in
+  // front of the mask's depth limit (a cheek that turns back under a steep slope can lie behind it a few
+  // millimetres beyond where the horizontal walk ended). Else the border is drawn in, a step at a time.
+  {
+    constexpr std::array<double, 6> kSteps{1.0, 0.96, 0.92, 0.88, 0.84, 0.80};
+    std::vector<double> xs;
+    for (std::size_t side = 0; side < 2; ++side)
+      for (double f : kSteps)
+        xs.push_back((side == 0 ? -1.0 : 1.0) * f * layout.border[side]);
+    const std::vector<Section> planes_cut = sections(canonical, Vec3::UnitX(), xs, {}, section);
+    const double tip = landmarks[Landmark::NoseTip]->y();
+    for (std::size_t side = 0; side < 2; ++side)
+      for (std::size_t k = 0; k < kSteps.size(); ++k) {
+        const std::optional<Vec3> p = section_at(planes_cut[side * kSteps.size() + k], {}, tip);
+        if (p && p->z() >= mask->min_z) {
+          if (k > 0) layout.border_limited[side] = ReachEnd::Behind;
+          layout.border[side] *= kSteps[k];
+          break;
+        }
+      }
+  }
+  for (std::size_t side = 0; side < 2; ++side) {
+    const double border = layout.border[side];
     // Where the side ends inside the outer eye corner (a scan cut short), its joints are drawn in.
     const double room = outer + std::max(4.0, 2.0 * min_gap);
     const double shrink = std::min(1.0, border / room);

@@ -16,6 +16,8 @@ namespace pdeface::slice {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// Pits (what a hole shows of the inside) are looked for on the front sampled this often along a section.
+constexpr double kPitStepMm = 0.5;
 
 // Merges intervals into ascending disjoint ones.
 std::vector<std::array<double, 2>> merged(std::vector<std::array<double, 2>> intervals) {
@@ -123,17 +125,90 @@ Vec3 interpolate(const std::vector<Vec3>& points, const ProfileAxes& axes, doubl
 
 } // namespace
 
-Section mesh_section(std::span<const Polyline> cut, const ProfileAxes& axes) {
+namespace {
+
+// The heights of `cover` where the envelope's front lies more than `depth` behind its front somewhere
+// within `reach` above and somewhere within `reach` below: a pit, what a hole in the surface shows of what
+// lies behind it. Sampled every `step`; ascending disjoint intervals.
+std::vector<std::array<double, 2>> pits(const Envelope& envelope,
+                                        const std::vector<std::array<double, 2>>& cover, double depth,
+                                        double reach, double step) {
+  std::vector<std::array<double, 2>> out;
+  if (cover.empty() || !(depth > 0.0) || !(reach > 0.0)) return out;
+  const double lo = cover.front()[0], hi = cover.back()[1];
+  const auto n = static_cast<std::size_t>(std::min((hi - lo) / step, 1e6)) + 1;
+  std::vector<double> w(n);
+  for (std::size_t i = 0; i < n; ++i)
+    w[i] = envelope.front(lo + static_cast<double>(i) * step);
+  const auto window = static_cast<std::size_t>(reach / step);
+  // The highest front within the window before and after each sample (a sliding maximum each way).
+  const auto sliding_max = [&](bool forward) {
+    std::vector<double> best(n, -kInf);
+    std::vector<std::size_t> queue; // indices of decreasing w
+    std::size_t head = 0;
+    for (std::size_t k = 0; k < n; ++k) {
+      const std::size_t i = forward ? k : n - 1 - k;
+      while (head < queue.size() && (forward ? i - queue[head] : queue[head] - i) > window)
+        ++head;
+      if (head < queue.size()) best[i] = w[queue[head]];
+      while (queue.size() > head && w[queue.back()] <= w[i])
+        queue.pop_back();
+      queue.push_back(i);
+    }
+    return best;
+  };
+  const std::vector<double> before = sliding_max(true), after = sliding_max(false);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!(w[i] > -kInf) || !(before[i] > w[i] + depth) || !(after[i] > w[i] + depth)) continue;
+    const double u = lo + static_cast<double>(i) * step;
+    if (!out.empty() && u - out.back()[1] <= step * 1.01)
+      out.back()[1] = u;
+    else
+      out.push_back({u, u});
+  }
+  for (auto& pit : out) {
+    pit[0] -= 0.5 * step;
+    pit[1] += 0.5 * step;
+  }
+  return out;
+}
+
+// `cover` without the intervals of `gaps` (both ascending and disjoint).
+std::vector<std::array<double, 2>> minus(const std::vector<std::array<double, 2>>& cover,
+                                         const std::vector<std::array<double, 2>>& gaps) {
+  std::vector<std::array<double, 2>> out;
+  for (auto piece : cover) {
+    for (const auto& g : gaps) {
+      if (g[1] <= piece[0] || g[0] >= piece[1]) continue;
+      if (g[0] > piece[0]) out.push_back({piece[0], g[0]});
+      piece[0] = g[1];
+      if (piece[0] >= piece[1]) break;
+    }
+    if (piece[0] < piece[1]) out.push_back(piece);
+  }
+  return out;
+}
+
+} // namespace
+
+Section mesh_section(std::span<const Polyline> cut, const ProfileAxes& axes, const SectionOptions& options) {
   const Envelope envelope(cut, axes);
   Section section;
+  section.cover = envelope.cover();
+  const std::vector<std::array<double, 2>> hidden =
+      pits(envelope, section.cover, options.hidden_depth_mm,
+           std::max(options.hidden_reach_mm, options.max_gap_mm), kPitStepMm);
+  const auto in_pit = [&](double u) {
+    return std::ranges::any_of(hidden, [&](const auto& pit) { return u > pit[0] && u < pit[1]; });
+  };
   for (const Polyline& line : cut)
     for (const Vec3& p : line.points) {
       const double u = axes.along.dot(p), w = axes.front.dot(p);
       // Visible: nothing in front at this height (a relative tolerance for the interpolated depths).
-      if (w >= envelope.front(u) - 1e-9 * (1.0 + std::abs(w))) section.points.push_back(p);
+      if (w >= envelope.front(u) - 1e-9 * (1.0 + std::abs(w)) && !in_pit(u)) section.points.push_back(p);
     }
   order(section.points, axes);
-  section.cover = envelope.cover();
+  section.cover = minus(section.cover, hidden);
   return section;
 }
 
@@ -252,7 +327,7 @@ std::vector<Section> sections(const Mesh& scan, std::span<const Plane> planes,
   }
   const std::vector<std::vector<Polyline>> cuts = intersect(scan, planes);
   for (std::size_t j = 0; j < planes.size(); ++j)
-    out.push_back(mesh_section(cuts[j], axes[j]));
+    out.push_back(mesh_section(cuts[j], axes[j], options));
   return out;
 }
 
@@ -324,6 +399,23 @@ Reach reach(const Section& section, const ProfileAxes& axes, double seed, const 
       break;
     }
     k = next;
+  }
+  // Where the surface lies behind the face, the walk ends at the last height in front of it.
+  if (std::isfinite(options.min_front)) {
+    double last = start;
+    std::vector<const Vec3*> ahead;
+    for (const Vec3& p : section.points) {
+      const double u = axes.along.dot(p);
+      if ((u - start) * dir >= 0.0 && (out.end - u) * dir >= 0.0) ahead.push_back(&p);
+    }
+    if (dir < 0) std::reverse(ahead.begin(), ahead.end());
+    for (const Vec3* p : ahead) {
+      if (axes.front.dot(*p) < options.min_front) {
+        out = {last, ReachEnd::Behind};
+        break;
+      }
+      last = axes.along.dot(*p);
+    }
   }
   if (!options.turn_from) return out;
   // Where the surface falls back more steeply than the turn allows, over the window, it faces away.

@@ -73,6 +73,9 @@ Result<ProfileSet> extract_profiles(const Mesh& canonical, const align::Landmark
     const double coverage = detail::mask_coverage(canonical, *mask, section);
     return coverage < options.min_mask_coverage ? mostly_missing(coverage) : layout.error();
   }
+  // The mask as the layout drew it: across the cheeks to the face's silhouette where that is nearer.
+  *mask = layout->mask;
+  set.mask = *mask;
   const std::vector<ProfilePlane>& planes = layout->planes;
   set.border = layout->border;
   set.border_mm = layout->border_mm;

@@ -35,10 +35,10 @@ struct FaceMask {
 
 struct FaceMaskOptions {
   //! At the outer eye corners' height the ellipse is this many times as wide as the corners are.
-  double beyond_outer_corners = 1.1;
+  double beyond_outer_corners = 1.3;
   //! Surface more than this fraction of the chin-to-forehead height behind the nose tip is not the face
   //! (the back of a head, the far side of a bust).
-  double depth_fraction = 0.6;
+  double depth_fraction = 0.5;
 };
 
 //! The mask of a face from its landmarks in the canonical frame: the chin (`face_bottom`) and the forehead

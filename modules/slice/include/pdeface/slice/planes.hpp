@@ -41,7 +41,7 @@ struct PlaneOptions {
   double border_beyond_mask = 1.06;
   //! The border stays where the face, seen on horizontal cross-sections beyond the outer eye corners,
   //! falls back by less than this angle from the x axis.
-  double max_turn_deg = 70.0;
+  double max_turn_deg = 80.0;
   double min_spacing_mm = 1.0; //!< joints closer than this are an error
   FaceMaskOptions mask;        //!< the face's outline from its landmarks
 };

@@ -9,6 +9,7 @@
 #include "pdeface/slice/intersect.hpp"
 
 #include <array>
+#include <limits>
 #include <optional>
 #include <span>
 #include <string>
@@ -27,10 +28,12 @@ struct SectionOptions {
   double max_gap_mm = 8.0;  //!< holes up to this long (along the profile's axis) are bridged linearly
   double slab_factor = 1.5; //!< point clouds: half-width of the slab, in median point spacings
   double spacing_mm = 0.0;  //!< point clouds: the median point spacing (0: measured by `sections`)
-  //! Point clouds: a height whose front-most points lie more than `hidden_depth_mm` behind the front within
-  //! `hidden_reach_mm` both above and below is hidden (a sparse cloud's front surface missed by the slab,
-  //! an ear or the far side of the head behind it): a gap, not the profile. Deeper than eye sockets and
-  //! the lip under the nose (the nose is in front on one side only).
+  //! A height whose front-most surface lies more than `hidden_depth_mm` behind the front within a reach
+  //! both above and below is hidden, a gap and not the profile: in a point cloud (reach
+  //! `hidden_reach_mm`), a sparse cloud's front surface missed by the slab, with an ear or the far side of
+  //! the head behind it; in a mesh (reach `max_gap_mm`, the longest hole bridged), a hole through which the
+  //! inside of a head, the far side of a bust or the inside of an open mouth shows. Deeper than eye sockets
+  //! and the lip under the nose (the nose is in front on one side only).
   double hidden_depth_mm = 20.0;
   double hidden_reach_mm = 10.0;
 };
@@ -44,8 +47,10 @@ struct Section {
 
 //! The front-most part of a mesh's cut by one plane (the polylines `intersect` gave for it): a polyline
 //! point is kept when nothing on the plane lies in front of it at its height (ears, the far side and
-//! hidden folds go).
-[[nodiscard]] Section mesh_section(std::span<const Polyline> cut, const ProfileAxes& axes);
+//! hidden folds go), and heights where what is in front lies far behind the surface above and below
+//! (`SectionOptions::hidden_depth_mm`) are a gap: what a hole shows of the inside.
+[[nodiscard]] Section mesh_section(std::span<const Polyline> cut, const ProfileAxes& axes,
+                                   const SectionOptions& options = {});
 
 //! The same for a point cloud: the points within `slab_factor · spacing` of `plane`, projected onto it,
 //! the front-most layer kept (points more than 3 spacings behind the front of their neighbourhood go, and
@@ -89,6 +94,9 @@ struct ReachOptions {
   std::optional<double> turn_from;
   double max_turn_deg = 70.0;
   double window_mm = 3.0;
+  //! The walk also ends where the surface lies further back (along `axes.front`) than this: behind the
+  //! face (hair over the ears, the side and back of a head, the neck under the jaw).
+  double min_front = -std::numeric_limits<double>::infinity();
 };
 
 //! Why a walk ended.
@@ -96,10 +104,13 @@ enum class ReachEnd {
   Limit,      //!< it reached `ReachOptions::limit`
   SurfaceEnd, //!< the surface ends (or the next surface lies beyond a hole longer than allowed)
   TurnsAway,  //!< the surface turns away from the viewer
+  Behind,     //!< the surface goes further back than the face (`ReachOptions::min_front`)
 };
 
-inline constexpr std::array<NamedValue<ReachEnd>, 3> kReachEndNames{
-    {{"limit", ReachEnd::Limit}, {"surface_end", ReachEnd::SurfaceEnd}, {"turns_away", ReachEnd::TurnsAway}}};
+inline constexpr std::array<NamedValue<ReachEnd>, 4> kReachEndNames{{{"limit", ReachEnd::Limit},
+                                                                     {"surface_end", ReachEnd::SurfaceEnd},
+                                                                     {"turns_away", ReachEnd::TurnsAway},
+                                                                     {"behind", ReachEnd::Behind}}};
 [[nodiscard]] std::string_view to_string(ReachEnd end) noexcept;
 
 struct Reach {
