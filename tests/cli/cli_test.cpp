@@ -243,8 +243,9 @@ TEST_F(Cli, ReconstructWritesTheSurfaceInTheScansUnits) {
   Outcome r = run({"reconstruct", path("face.glb"), "-o", path("surface.ply"), "--profiles",
                    path("curves.json"), "--resolution", "60x80"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(lines(r.out), 5U) << r.out;
+  EXPECT_EQ(lines(r.out), 6U) << r.out;
   EXPECT_NE(r.out.find(" m in the scan's units"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("self-check on the face: mean distance"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("coverage of the face"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("28 curves"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("spline scheme"), std::string::npos) << r.out;
@@ -265,6 +266,37 @@ TEST_F(Cli, ReconstructWritesTheSurfaceInTheScansUnits) {
   ASSERT_EQ(paper.exit_code, 0) << paper.err;
   EXPECT_NE(paper.out.find("paper scheme, N = 10 modes + remainder, a = 1.000"), std::string::npos)
       << paper.out;
+}
+
+// A result its own self-check finds off (4 curves cannot hold a face: 2.8 mm from the scan on average) is
+// refused with what failed and by how much, nothing written and an existing output left as it was; with
+// --force it is written, with a warning.
+TEST_F(Cli, AResultThatFailsItsSelfCheckIsNotWritten) {
+  ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
+  {
+    std::ofstream old(work_ / "out.glb");
+    old << "the user's earlier file";
+  }
+  const std::size_t before = files();
+  for (const std::string output : {"out.glb", "out.pdef"}) {
+    const std::string command = output == "out.glb" ? "reconstruct" : "encode";
+    const std::vector<std::string> args{command, path("face.ply"), "-o", path(output), "--curves", "4"};
+    const Outcome r = run(args);
+    EXPECT_EQ(r.exit_code, 1) << command << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1U) << r.err;
+    EXPECT_NE(r.err.find("self-check failed"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("mean distance to the scan"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("face.ply"), std::string::npos) << r.err;
+    EXPECT_EQ(files(), before) << command;
+    EXPECT_EQ(slurp(work_ / "out.glb"), "the user's earlier file");
+  }
+  const Outcome forced =
+      run({"reconstruct", path("face.ply"), "-o", path("out.glb"), "--curves", "4", "--force"});
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_NE(forced.err.find("warning: written with --force although its self-check failed"),
+            std::string::npos)
+      << forced.err;
+  EXPECT_NE(slurp(work_ / "out.glb"), "the user's earlier file");
 }
 
 TEST_F(Cli, ReconstructFailsCleanlyAndWritesNothing) {

@@ -149,6 +149,20 @@ void print_holes_and_gaps(const slice::ProfileSet& set) {
     fmt::print(stderr, "pdeface: note: missing from the scan: {}\n", m);
 }
 
+void add_force(CLI::App* cmd, bool& force) {
+  cmd->add_flag("--force", force,
+                "Write the result even when its self-check against the scan fails (docs/compare.md, "
+                "\"Self-check\"), with a warning");
+}
+
+void print_check(const compare::SelfCheck& check) {
+  if (check.passed())
+    fmt::print("self-check on the face: {}\n", check.summary());
+  else
+    fmt::print(stderr, "pdeface: warning: written with --force although its self-check failed: {}\n",
+               check.summary());
+}
+
 int encode_scan(const std::filesystem::path& in, const std::filesystem::path& out,
                 const compare::EncodeRequest& request) {
   if (formats::format_from_path(out) != formats::Format::Pdef) {
@@ -179,6 +193,7 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
         "within {:.4f} mm of the original (at most {} mm)\n",
         out.string(), e.bytes.size(), e.step_mm, e.max_sample_error, e.max_surface_error,
         request.encoding.max_error_mm);
+  if (made->check) print_check(*made->check);
   print_holes_and_gaps(p);
   return 0;
 }

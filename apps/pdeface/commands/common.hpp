@@ -104,6 +104,12 @@ struct SurfaceArgs {
   [[nodiscard]] pde::Options pde_options() const;
 };
 
+//! `--force`: write a result that fails its self-check anyway, with a warning.
+void add_force(CLI::App* cmd, bool& force);
+//! The self-check of what was written: a warning on stderr when it failed (written with `--force`), else
+//! one line of its figures.
+void print_check(const compare::SelfCheck& check);
+
 //! What slicing filled and what the scan lacks, as notes on stderr.
 void print_holes_and_gaps(const slice::ProfileSet& set);
 

@@ -15,6 +15,7 @@ struct EncodeArgs {
   bool lossless = false;
   bool store_landmarks = false;
   std::string name;
+  bool force = false;
 };
 
 int run_encode(const EncodeArgs& args) {
@@ -26,7 +27,8 @@ int run_encode(const EncodeArgs& args) {
                                  .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
                                  .store_landmarks = args.store_landmarks,
                                  .name = args.name,
-                                 .source = args.in.string()};
+                                 .source = args.in.string(),
+                                 .force = args.force};
   return encode_scan(args.in, args.out, request);
 }
 
@@ -49,6 +51,7 @@ void encode_command(CLI::App& app, int& status) {
   cmd->add_option("--name", args->name, "A name to store in the file");
   args->curves.add_to(cmd);
   args->surface.add_to(cmd);
+  add_force(cmd, args->force);
   cmd->callback([args, &status] { status = run_encode(*args); });
 }
 

@@ -20,6 +20,7 @@ struct ReconstructArgs {
   SurfaceArgs surface;
   std::vector<std::size_t> resolution; // {v} or {u, v}
   formats::WriteOptions write;
+  bool force = false;
 };
 
 void print_fidelity(const compare::ReconstructOutcome& made) {
@@ -51,7 +52,8 @@ int run_reconstruct(const ReconstructArgs& args) {
       .options = {.profiles = args.curves.profile_options(), .pde = args.surface.pde_options()},
       .profiles_json = !args.profiles.empty(),
       .preview = !args.preview.empty(),
-      .source = args.in.string()};
+      .source = args.in.string(),
+      .force = args.force};
   if (args.resolution.size() == 1) request.options.resolution = compare::Resolution{0, args.resolution[0]};
   if (args.resolution.size() == 2)
     request.options.resolution = compare::Resolution{args.resolution[0], args.resolution[1]};
@@ -80,6 +82,7 @@ int run_reconstruct(const ReconstructArgs& args) {
              args.out.string(), r.grid.u, r.grid.v, r.scan.vertex_count(), r.scan.triangle_count(), bytes,
              to_string(r.scan.units));
   print_fidelity(*made);
+  print_check(made->check);
   print_holes_and_gaps(p);
   return 0;
 }
@@ -100,6 +103,7 @@ void reconstruct_command(CLI::App& app, int& status) {
   args->curves.add_to(cmd);
   args->surface.add_to(cmd);
   add_write_options(cmd, args->write);
+  add_force(cmd, args->force);
   cmd->callback([args, &status] { status = run_reconstruct(*args); });
 }
 

@@ -454,9 +454,11 @@ struct Verified {
 
 // The landmarks searched in the frame the nose gives (both ways up), the frame and the scale refitted
 // to them, a few times: a candidate that is a face ends with its landmarks on the average face's.
-// With `fixed_scale`, the scale stays (the file stated the units).
-Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, bool fixed_scale, int rounds,
-                double cell, const Similarity* from = nullptr) {
+// With `stated` (the file stated the units: millimetres per unit), the face's scale stays within a factor
+// `kUnitSnapFactor` of it: a child's face, or a large adult's, is searched at its own size, in the units
+// the file gave.
+Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, std::optional<double> stated,
+                int rounds, double cell, const Similarity* from = nullptr) {
   // The first round both ways up (or from the frame a quicker verification ended in); the rest the
   // better way.
   Verified best;
@@ -481,9 +483,9 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, bool fix
   }
   for (int round = 1; round <= rounds && std::isfinite(best.shape_rms); ++round) {
     // The next round at the scale the landmarks say (within reason: one round moves it 1.5× at most).
-    const double mm = fixed_scale ? frame.scale
-                                  : std::clamp(robust_scale(best.found).value_or(frame.scale),
-                                               frame.scale / 1.5, frame.scale * 1.5);
+    double mm =
+        std::clamp(robust_scale(best.found).value_or(frame.scale), frame.scale / 1.5, frame.scale * 1.5);
+    if (stated) mm = std::clamp(mm, *stated / kUnitSnapFactor, *stated * kUnitSnapFactor);
     Result<FaceFrame> next = frame_from_landmarks(symmetrised(best.found, c.plane), mm, Units::Unknown);
     if (!next) break;
     const double turn = Eigen::AngleAxisd(next->rotation * frame.rotation.transpose()).angle();
@@ -574,7 +576,7 @@ Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const Fac
   const PointIndex index(scan.positions);
   const Landmarks found =
       detail::search_landmarks(scan.positions, scan.triangles, detail::median_spacing(scan.positions, index),
-                               similarity(frame), 1.0, detail::boundary_loops(scan.triangles));
+                               similarity(frame), 1.0, detail::boundary_loops(scan.triangles), true);
   Landmarks out = given;
   for (std::size_t i = 0; i < kLandmarkCount; ++i)
     if (!out.points[i] && found.points[i]) out.points[i] = *found.points[i];
@@ -591,8 +593,11 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   if (!(scene.size > 0.0) || scene.spacing <= 0.0)
     return make_error(ErrorCode::NoFace, "no face found: the points do not span a surface", source);
   const bool fixed_scale = scan.units != Units::Unknown;
+  const std::optional<double> stated =
+      fixed_scale ? std::optional<double>(millimetres_per(scan.units)) : std::nullopt;
+  // Stated units: the face at that scale first, then as a child's (0.7 times as large) or a large adult's.
   const std::vector<double> scales =
-      fixed_scale ? std::vector<double>{millimetres_per(scan.units)} : candidate_scales(scene);
+      stated ? std::vector<double>{*stated, *stated * 1.4, *stated / 1.2} : candidate_scales(scene);
 
   // Hypotheses: on the scan's own symmetry planes, every nose-like point; around the most pointed
   // extreme points, the local symmetry plane and the nose on it; each at every candidate scale. Every
@@ -653,7 +658,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       // The plane registered roughly on the central face, and the nose on it again.
       const std::optional<Candidate> c = around_the_nose(scene, seed.plane, seed.nose, unit, 400, 10);
       if (!c) continue;
-      Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 2.0)};
+      Hypothesis h{*c, verify(scene, *c, mm, stated, 3, 2.0)};
       h.rank = rank(*c, h.verified);
       quick.push_back(std::move(h));
     }
@@ -773,7 +778,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       const std::optional<Candidate> c =
           around_the_nose(scene, q.candidate.plane, q.candidate.nose, 1.0 / mm);
       if (!c) continue;
-      Hypothesis h{*c, verify(scene, *c, mm, fixed_scale, 3, 1.0, &q.verified.frame)};
+      Hypothesis h{*c, verify(scene, *c, mm, stated, 3, 1.0, &q.verified.frame)};
       h.rank = rank(*c, h.verified);
       hypotheses.push_back(std::move(h));
     }
@@ -795,9 +800,8 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   try_scale(first, false, true);
   if (found_a_face())
     if (std::optional<Detection> d = conclude()) return std::move(*d);
-  if (!fixed_scale)
-    for (const double mm : scales)
-      try_scale(mm, true, true);
+  for (const double mm : scales)
+    try_scale(mm, true, true);
   // Last, every remaining hypothesis, the most face-like first, three at a time.
   for (std::size_t round = 0; round < 3; ++round)
     if (std::optional<Detection> d = conclude()) return std::move(*d);

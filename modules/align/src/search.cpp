@@ -1,12 +1,30 @@
 #include "search.hpp"
 
+#include "pdeface/align/frame.hpp"
+
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <unordered_map>
 
 namespace pdeface::align::detail {
 namespace {
+
+// The midline is followed across holes up to this long (face mm) when the face's top and bottom are
+// looked for: capture holes on the forehead or the chin do not end the face.
+constexpr double kMidlineHoleMm = 20.0;
+// What a hole of the surface shows of the inside (an eye hole of a full head, a capture hole in a bust) is
+// not the face: depth-map cells this far (face mm) behind the surface on both sides within the reach are
+// holes. Deeper than an eye socket below the brow and the cheek.
+constexpr double kPitDepthMm = 20.0;
+constexpr double kPitReachMm = 25.0;
+// An eye that is a hole of the mesh is a fissure: at most this high for its width (+2 mm). A capture hole
+// that swallowed the eye is rounder, and its ends are not the eye's corners.
+constexpr double kEyeHoleAspect = 0.6;
 
 // ---- landmarks in the depth map -------------------------------------------------------------------------
 
@@ -135,6 +153,55 @@ std::optional<double> lips_by_bending(const std::vector<std::pair<double, double
   return midline[static_cast<std::size_t>(deepest - c.begin())].first;
 }
 
+// The stable landmarks (nose tip, eye and mouth corners) checked against each other: the average face
+// fitted to them (a similarity, `Eigen::umeyama`, in face millimetres); while one lies more than
+// `kOutlierMm` from where the fit puts it (a corner taken from the end of a capture hole that swallowed the
+// eye) and five or more remain, the worst is dropped and the fit made again. The dropped ones and those not
+// found are then put where the fit of the rest puts them, on the surface. The nose tip anchors the fit and
+// stays. `local(l)`: a landmark in face mm, or nullopt; `surface(x, y)`: the depth there, if any.
+constexpr double kOutlierMm = 14.0;
+constexpr std::array<Landmark, 7> kStableLandmarks{
+    Landmark::NoseTip,       Landmark::EyeInnerLeft, Landmark::EyeInnerRight, Landmark::EyeOuterLeft,
+    Landmark::EyeOuterRight, Landmark::MouthLeft,    Landmark::MouthRight};
+
+std::array<std::optional<Vec3>, 7>
+repaired(std::array<std::optional<Vec3>, 7> local,
+         const std::function<std::optional<double>(double, double)>& surface) {
+  const Landmarks& average = canonical_template();
+  std::array<bool, 7> use{};
+  for (std::size_t i = 0; i < local.size(); ++i)
+    use[i] = local[i].has_value();
+  if (!use[0]) return local;
+  Eigen::Matrix4d fit = Eigen::Matrix4d::Identity();
+  for (;;) {
+    const auto n = static_cast<Eigen::Index>(std::ranges::count(use, true));
+    if (n < 4) return local; // too few to say which are off
+    Eigen::Matrix3Xd from(3, n), to(3, n);
+    Eigen::Index k = 0;
+    for (std::size_t i = 0; i < local.size(); ++i)
+      if (use[i]) {
+        from.col(k) = *average[kStableLandmarks[i]];
+        to.col(k++) = *local[i];
+      }
+    fit = Eigen::umeyama(from, to, true);
+    std::size_t worst = 0;
+    double most = 0.0;
+    for (std::size_t i = 1; i < local.size(); ++i)
+      if (use[i]) {
+        const double off = ((fit * average[kStableLandmarks[i]]->homogeneous()).head<3>() - *local[i]).norm();
+        if (off > most) most = off, worst = i;
+      }
+    if (most <= kOutlierMm || n <= 5) break;
+    use[worst] = false;
+  }
+  for (std::size_t i = 1; i < local.size(); ++i)
+    if (!use[i]) {
+      const Vec3 p = (fit * average[kStableLandmarks[i]]->homogeneous()).head<3>();
+      local[i] = Vec3(p.x(), p.y(), surface(p.x(), p.y()).value_or(p.z()));
+    }
+  return local;
+}
+
 } // namespace
 
 Loops boundary_loops(std::span<const Triangle> triangles) {
@@ -183,13 +250,15 @@ Loops boundary_loops(std::span<const Triangle> triangles) {
 // near the origin, eye and mouth corners as the hollows of the windows where faces have them, the face's
 // bottom where the midline turns under the chin, its top by the rule of thirds (within the scan).
 Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangle> triangles, double spacing,
-                           const Similarity& frame, double cell, const Loops& loops) {
+                           const Similarity& frame, double cell, const Loops& loops, bool repair,
+                           Landmarks* as_found) {
   std::vector<Vec3> local(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     local[i] = frame.to_face(points[i]);
   spacing *= frame.scale;
   DepthMap map(-100.0, 100.0, -140.0, 120.0, cell);
   map.rasterise(local, triangles, std::max(1.5 * cell, 1.5 * spacing));
+  map.drop_pits(kPitDepthMm, kPitReachMm);
   map.fill_holes(std::max(1, static_cast<int>(std::lround(4.0 / cell))));
 
   std::optional<Eigen::Vector3d> tip; // (x, y, z) in the frame
@@ -251,7 +320,7 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
     for (const Hole& h : holes) {
       const double out = side * (h.centre.x() - x0), up = h.centre.y() - y0;
       if (out < 10.0 || out > 60.0 || up < 15.0 || up > 60.0) continue;
-      if (h.size.x() < 12.0 || h.size.x() > 55.0 || h.size.y() > 0.75 * h.size.x() + 2.0) continue;
+      if (h.size.x() < 12.0 || h.size.x() > 55.0 || h.size.y() > kEyeHoleAspect * h.size.x() + 2.0) continue;
       if (!best || h.size.x() > best->size.x()) best = &h;
     }
     return best;
@@ -308,26 +377,58 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   const double y_eyes = mean(eye_y, y0 + 38.0);
   const double y_mouth = mean(mouth_y, y0 - 35.0);
 
+  // Where the midline has surface, holes up to kMidlineHoleMm crossed (a capture hole, a nostril's
+  // shadow): from `y` one step at a time towards `step`'s sign while `keep(z)` holds; the last height with
+  // surface, and whether the scan ended there (rather than `keep` failing).
+  const auto follow = [&](double y, double step, const auto& keep) {
+    double last = y;
+    for (double gap = 0.0; std::abs(y + step) < 140.0 && gap <= kMidlineHoleMm;) {
+      y += step;
+      const std::optional<double> z = map.at(x0, y);
+      if (!z) {
+        gap += std::abs(step);
+        continue;
+      }
+      if (!keep(*z)) return std::pair{last, false};
+      last = y;
+      gap = 0.0;
+    }
+    return std::pair{last, true};
+  };
   // The chin's most forward point on the midline below the mouth, then down while the profile stays
-  // within 15 mm of it (below that, it turns under the chin towards the neck).
+  // within 15 mm of it (below that, it turns under the chin towards the neck). Where the scan ends first
+  // (a chin cut short) or shows no chin, the chin is where the average face has it below the mouth.
+  const Landmarks& average = canonical_template();
+  const double chin_by_proportion =
+      y_mouth + average[Landmark::FaceBottom]->y() -
+      0.5 * (average[Landmark::MouthLeft]->y() + average[Landmark::MouthRight]->y());
   std::optional<Eigen::Vector2d> chin; // (y, z)
   for (double y = y_mouth - 12.0; y >= y_mouth - 55.0; y -= 1.0)
     if (const auto z = map.at(x0, y); z && (!chin || *z > chin->y())) chin = Eigen::Vector2d(y, *z);
-  if (!chin) return found;
-  double y_bottom = chin->x();
-  while (y_bottom > -140.0) {
-    const auto z = map.at(x0, y_bottom - 1.0);
-    if (!z || *z < chin->y() - 15.0) break;
-    y_bottom -= 1.0;
+  double y_bottom = chin_by_proportion;
+  if (chin) {
+    const auto [end, cut] = follow(chin->x(), -1.0, [&](double z) { return z >= chin->y() - 15.0; });
+    y_bottom = cut ? std::min(end, chin_by_proportion) : end;
   }
-  place(Landmark::FaceBottom, x0, y_bottom);
+  const double z_bottom = map.at(x0, y_bottom).value_or(chin ? chin->y() : tip->z() - 28.0);
+  found[Landmark::FaceBottom] = frame.to_scan(Vec3(x0, y_bottom, z_bottom));
   // Rule of thirds: hairline to nasion ~ half of nasion to chin; the nasion is a few mm above the eyes.
+  // Up the midline to there, or to where the scan ends first (holes crossed).
   const double y_nasion = y_eyes + 4.0;
   const double y_top = y_nasion + 0.5 * (y_nasion - y_bottom);
-  double y_scan = y_nasion;
-  while (y_scan < y_top && map.at(x0, y_scan + 1.0))
-    y_scan += 1.0;
-  place(Landmark::FaceTop, x0, y_scan);
+  const double y_scan = std::min(y_top, follow(y_nasion, 1.0, [](double) { return true; }).first);
+  const double z_top = map.at(x0, y_scan).value_or(tip->z() - 30.0);
+  found[Landmark::FaceTop] = frame.to_scan(Vec3(x0, std::max(y_scan, y_nasion), z_top));
+
+  if (as_found) *as_found = found;
+  if (!repair) return found;
+  std::array<std::optional<Vec3>, 7> stable;
+  for (std::size_t i = 0; i < stable.size(); ++i)
+    if (found.has(kStableLandmarks[i])) stable[i] = frame.to_face(*found[kStableLandmarks[i]]);
+  const std::array<std::optional<Vec3>, 7> fixed =
+      repaired(stable, [&](double x, double y) { return map.at(x, y); });
+  for (std::size_t i = 0; i < stable.size(); ++i)
+    if (fixed[i] && fixed[i] != stable[i]) found[kStableLandmarks[i]] = frame.to_scan(*fixed[i]);
   return found;
 }
 
@@ -340,6 +441,7 @@ std::optional<double> eye_hollowness(std::span<const Vec3> points, std::span<con
   spacing *= frame.scale;
   DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
   map.rasterise(local, triangles, std::max(1.5, 1.5 * spacing));
+  map.drop_pits(kPitDepthMm, kPitReachMm);
   map.fill_holes(4);
   // Smoothed at least as much as the points are apart: a coarse cloud's splats make hollows of their own.
   const DepthMap soft = map.smoothed(std::max(1.5, spacing));

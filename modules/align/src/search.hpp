@@ -33,10 +33,15 @@ using Loops = std::vector<std::vector<std::uint32_t>>;
 // origin is near the nose tip and whose axes are near the canonical ones. `spacing` is the scan's point
 // spacing in its units; `cell` the depth map's (mm): 1 for the final landmarks, coarser to try a
 // candidate quickly. `loops` are the scan's boundaries (`boundary_loops`): an eye or a mouth that is a
-// hole in the mesh has its corners at the ends of the hole.
+// hole in the mesh has its corners at the ends of the hole. With `repair`, a corner that lies far from
+// where the others put it on the average face (the end of a capture hole that swallowed an eye), or that
+// was not found, is estimated from the others: for the final landmarks of a face already decided on, never
+// while candidates are judged (a repaired non-face would fit the average face by construction); `as_found`
+// then receives them before the repair, to judge the face by.
 [[nodiscard]] Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangle> triangles,
                                          double spacing, const Similarity& frame, double cell = 1.0,
-                                         const Loops& loops = {});
+                                         const Loops& loops = {}, bool repair = false,
+                                         Landmarks* as_found = nullptr);
 
 // How hollow the scan is at its inner eye corners, seen in `frame` (mm): the least, over the two corners,
 // of the mean depth within 12 mm of a corner minus the corner's own depth, on a map smoothed by 1.5 mm

@@ -1,5 +1,7 @@
 #include "pdeface/compare/encode.hpp"
 
+#include "pdeface/pdef/mesh.hpp"
+
 namespace pdeface::compare {
 
 pdef::Frame frame_of(const align::FaceFrame& frame) {
@@ -48,6 +50,17 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
   Result<pdef::Encoded> encoded = pdef::encode(out.face, request.encoding);
   if (!encoded) return named(std::move(encoded).error());
   out.encoded = *std::move(encoded);
+  if (!request.check) return out;
+  // What a reader gets: the file's bytes decoded and meshed, back in the canonical frame.
+  Result<pdef::Face> decoded = pdef::decode(out.encoded.bytes, request.source);
+  if (!decoded) return named(std::move(decoded).error());
+  Result<Mesh> mesh = pdef::to_mesh(*decoded, std::nullopt, request.source);
+  if (!mesh) return named(std::move(mesh).error());
+  Result<SelfCheck> check =
+      checked(canonical.mesh, out.profiles, align::to_canonical(*mesh, out.alignment.frame), *request.check,
+              request.force, request.source);
+  if (!check) return check.error();
+  out.check = *std::move(check);
   return out;
 }
 

@@ -5,6 +5,7 @@
 #include "pdeface/slice/profile.hpp"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cmath>
@@ -256,5 +257,66 @@ double FaceYardstick::quick_mask_mean(const Mesh& mesh, std::size_t stride) cons
 double FaceYardstick::distance_to_scan(const Vec3& p) const { return state_->to_scan.distance(p); }
 
 const slice::FaceMask& FaceYardstick::mask() const { return state_->mask; }
+
+double facing_away(const Mesh& mesh, const slice::FaceMask& mask) {
+  double area = 0.0, away = 0.0;
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3& a = mesh.positions[t[0]];
+    const Vec3& b = mesh.positions[t[1]];
+    const Vec3& c = mesh.positions[t[2]];
+    if (!mask.contains((a + b + c) / 3.0)) continue;
+    const Vec3 n = (b - a).cross(c - a);
+    area += n.norm();
+    if (n.z() < 0.0) away += n.norm();
+  }
+  return area > 0.0 ? away / area : 0.0;
+}
+
+std::string SelfCheck::summary() const {
+  if (!failures.empty()) return fmt::format("{}", fmt::join(failures, "; "));
+  return fmt::format("mean distance {:.3f} mm, {:.1f} % of the face within 1 mm, {:.2f} % of its area facing "
+                     "away",
+                     mean_mm, 100.0 * coverage, 100.0 * facing_away);
+}
+
+SelfCheck self_check(const MeshFidelity& fidelity, double away, const CheckLimits& limits) {
+  SelfCheck c{fidelity.to_scan.mean, fidelity.coverage.share, away, {}};
+  if (!(c.mean_mm <= limits.max_mean_mm))
+    c.failures.push_back(
+        fmt::format("mean distance to the scan {:.3f} mm > {:g} mm", c.mean_mm, limits.max_mean_mm));
+  if (!(c.coverage >= limits.min_coverage))
+    c.failures.push_back(fmt::format("{:.1f} % of the face within 1 mm < {:g} %", 100.0 * c.coverage,
+                                     100.0 * limits.min_coverage));
+  if (!(c.facing_away <= limits.max_facing_away))
+    c.failures.push_back(fmt::format("{:.2f} % of its area faces away from the viewer > {:g} % (a fold)",
+                                     100.0 * c.facing_away, 100.0 * limits.max_facing_away));
+  return c;
+}
+
+Result<SelfCheck> self_check(const FaceYardstick& yardstick, const Mesh& result, const CheckLimits& limits) {
+  Result<MeshFidelity> f = yardstick.measure(result);
+  if (!f) return std::move(f).error();
+  return self_check(*f, facing_away(result, yardstick.mask()), limits);
+}
+
+Result<SelfCheck> checked(const Mesh& scan, const slice::ProfileSet& profiles, const Mesh& result,
+                          const CheckLimits& limits, bool force, std::string_view source) {
+  const auto refused = [&](const std::string& why) -> Result<SelfCheck> {
+    if (force) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      return SelfCheck{nan, nan, nan, {why}};
+    }
+    return make_error(
+        ErrorCode::SelfCheck,
+        fmt::format("the result is off, so it was not written: {} (--force writes it anyway)", why),
+        std::string(source));
+  };
+  Result<FaceYardstick> yardstick = FaceYardstick::make(scan, profiles);
+  if (!yardstick) return refused(yardstick.error().message);
+  Result<SelfCheck> check = self_check(*yardstick, result, limits);
+  if (!check) return refused(check.error().message);
+  if (!check->passed() && !force) return refused(check->summary());
+  return check;
+}
 
 } // namespace pdeface::compare

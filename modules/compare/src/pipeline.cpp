@@ -49,6 +49,10 @@ Result<ReconstructOutcome> reconstruct_request(const Mesh& scan, const Reconstru
     out.fidelity = *f;
   else
     out.fidelity_failure = f.error().message;
+  Result<SelfCheck> check =
+      checked(canonical.mesh, r.profiles, r.canonical, request.check, request.force, request.source);
+  if (!check) return check.error();
+  out.check = *std::move(check);
   if (request.profiles_json) out.profiles_json = slice::write_profiles_json(r.profiles);
   if (request.preview)
     out.preview_svg = reconstruction_preview_svg(

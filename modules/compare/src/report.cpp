@@ -131,10 +131,16 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
     const Mesh mesh = in_canonical(e->decoded);
     if (task.variant.method != Method::Raw && task.variant.method != Method::Gzip) {
       Result<MeshFidelity> f = yardstick.measure(mesh);
-      if (f)
-        task.variant.fidelity = *f;
-      else
+      if (!f) {
         task.variant.failure = f.error().message;
+      } else if (const SelfCheck check = self_check(*f, facing_away(mesh, yardstick.mask()), options.check);
+                 task.variant.method == Method::Pde && !check.passed()) {
+        // What `pdeface encode` would refuse to write is a failed row, never a silent number.
+        task.variant.failure = "self-check failed: " + check.summary();
+        task.keep_mesh = false;
+      } else {
+        task.variant.fidelity = *f;
+      }
     }
     if (task.keep_mesh || task.variant.method == Method::Raw || task.variant.method == Method::Gzip)
       task.decoded = e->decoded;

@@ -213,6 +213,7 @@ Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, 
   request.encoding.lossless = lossless;
   request.source = source;
   request.pde.scheme = scheme;
+  request.check.reset(); // measured and checked by the caller, on the scan's yardstick
   Encoded e;
   Clock::time_point start = Clock::now();
   Result<EncodeOutcome> made = encode_aligned(scan, alignment, request);

@@ -78,6 +78,29 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
   }
 }
 
+void DepthMap::drop_pits(double depth, double reach) {
+  const int n = std::max(1, static_cast<int>(std::ceil(reach / cell_)));
+  const auto front_within = [&](int r, int c, int dr, int dc) {
+    double best = -std::numeric_limits<double>::infinity();
+    for (int k = 1; k <= n; ++k) {
+      const int rr = r + k * dr, cc = c + k * dc;
+      if (rr < 0 || cc < 0 || rr >= rows() || cc >= cols()) break;
+      if (known(rr, cc)) best = std::max(best, z_(rr, cc));
+    }
+    return best;
+  };
+  Eigen::MatrixXd next = z_;
+  for (int r = 0; r < rows(); ++r)
+    for (int c = 0; c < cols(); ++c) {
+      if (!known(r, c)) continue;
+      const double floor = z_(r, c) + depth;
+      const bool across = front_within(r, c, 0, -1) > floor && front_within(r, c, 0, 1) > floor;
+      const bool along = front_within(r, c, -1, 0) > floor && front_within(r, c, 1, 0) > floor;
+      if (across || along) next(r, c) = std::numeric_limits<double>::quiet_NaN();
+    }
+  z_ = std::move(next);
+}
+
 void DepthMap::fill_holes(int max_gap) {
   for (int pass = 0; pass < max_gap; ++pass) {
     Eigen::MatrixXd next = z_;

@@ -22,6 +22,7 @@ std::string_view to_string(ErrorCode code) noexcept {
   case ErrorCode::InvalidArgument: return "invalid argument";
   case ErrorCode::NoFace: return "no face";
   case ErrorCode::ChecksumMismatch: return "checksum mismatch";
+  case ErrorCode::SelfCheck: return "self-check failed";
   }
   return "error";
 }

@@ -127,51 +127,77 @@ Vec3 interpolate(const std::vector<Vec3>& points, const ProfileAxes& axes, doubl
 
 namespace {
 
-// The heights of `cover` where the envelope's front lies more than `depth` behind its front somewhere
-// within `reach` above and somewhere within `reach` below: a pit, what a hole in the surface shows of what
-// lies behind it. Sampled every `step`; ascending disjoint intervals.
-std::vector<std::array<double, 2>> pits(const Envelope& envelope,
-                                        const std::vector<std::array<double, 2>>& cover, double depth,
-                                        double reach, double step) {
-  std::vector<std::array<double, 2>> out;
-  if (cover.empty() || !(depth > 0.0) || !(reach > 0.0)) return out;
-  const double lo = cover.front()[0], hi = cover.back()[1];
-  const auto n = static_cast<std::size_t>(std::min((hi - lo) / step, 1e6)) + 1;
-  std::vector<double> w(n);
-  for (std::size_t i = 0; i < n; ++i)
-    w[i] = envelope.front(lo + static_cast<double>(i) * step);
-  const auto window = static_cast<std::size_t>(reach / step);
-  // The highest front within the window before and after each sample (a sliding maximum each way).
-  const auto sliding_max = [&](bool forward) {
-    std::vector<double> best(n, -kInf);
-    std::vector<std::size_t> queue; // indices of decreasing w
-    std::size_t head = 0;
-    for (std::size_t k = 0; k < n; ++k) {
-      const std::size_t i = forward ? k : n - 1 - k;
-      while (head < queue.size() && (forward ? i - queue[head] : queue[head] - i) > window)
-        ++head;
-      if (head < queue.size()) best[i] = w[queue[head]];
-      while (queue.size() > head && w[queue.back()] <= w[i])
-        queue.pop_back();
-      queue.push_back(i);
+// What a hole in the surface shows of what lies behind it: the heights of `cover` where the envelope's front
+// lies more than `depth` behind its front somewhere within `reach` above and somewhere within `reach`
+// below, sampled every `step` (`intervals`, ascending and disjoint, a step wider on each side than the
+// samples found deep), and any point that deep (`hides`: the rim of the hole's far side between samples).
+class Pits {
+public:
+  Pits(const Envelope& envelope, const std::vector<std::array<double, 2>>& cover, double depth, double reach,
+       double step)
+      : depth_(depth), step_(step) {
+    if (cover.empty() || !(depth > 0.0) || !(reach > 0.0)) return;
+    lo_ = cover.front()[0];
+    const double hi = cover.back()[1];
+    const auto n = static_cast<std::size_t>(std::min((hi - lo_) / step, 1e6)) + 1;
+    std::vector<double> w(n);
+    for (std::size_t i = 0; i < n; ++i)
+      w[i] = envelope.front(lo_ + static_cast<double>(i) * step);
+    const auto window = static_cast<std::size_t>(reach / step);
+    // The highest front within the window before and after each sample (a sliding maximum each way).
+    const auto sliding_max = [&](bool forward) {
+      std::vector<double> best(n, -kInf);
+      std::vector<std::size_t> queue; // indices of decreasing w
+      std::size_t head = 0;
+      for (std::size_t k = 0; k < n; ++k) {
+        const std::size_t i = forward ? k : n - 1 - k;
+        while (head < queue.size() && (forward ? i - queue[head] : queue[head] - i) > window)
+          ++head;
+        if (head < queue.size()) best[i] = w[queue[head]];
+        while (queue.size() > head && w[queue.back()] <= w[i])
+          queue.pop_back();
+        queue.push_back(i);
+      }
+      return best;
+    };
+    before_ = sliding_max(true);
+    after_ = sliding_max(false);
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!deep(i, w[i])) continue;
+      const double u = lo_ + static_cast<double>(i) * step;
+      if (!intervals_.empty() && u - intervals_.back()[1] <= 1.01 * step)
+        intervals_.back()[1] = u;
+      else
+        intervals_.push_back({u, u});
     }
-    return best;
-  };
-  const std::vector<double> before = sliding_max(true), after = sliding_max(false);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (!(w[i] > -kInf) || !(before[i] > w[i] + depth) || !(after[i] > w[i] + depth)) continue;
-    const double u = lo + static_cast<double>(i) * step;
-    if (!out.empty() && u - out.back()[1] <= step * 1.01)
-      out.back()[1] = u;
-    else
-      out.push_back({u, u});
+    for (auto& pit : intervals_) {
+      pit[0] -= step;
+      pit[1] += step;
+    }
   }
-  for (auto& pit : out) {
-    pit[0] -= 0.5 * step;
-    pit[1] += 0.5 * step;
+
+  [[nodiscard]] const std::vector<std::array<double, 2>>& intervals() const { return intervals_; }
+
+  //! Whether a point at height u, depth w lies in a pit or as deep as one beside it.
+  [[nodiscard]] bool hides(double u, double w) const {
+    if (std::ranges::any_of(intervals_, [&](const auto& pit) { return u > pit[0] && u < pit[1]; }))
+      return true;
+    if (before_.empty()) return false;
+    const double t = (u - lo_) / step_;
+    if (!(t >= 0.0) || t > static_cast<double>(before_.size() - 1)) return false;
+    return deep(static_cast<std::size_t>(std::floor(t)), w) &&
+           deep(static_cast<std::size_t>(std::ceil(t)), w);
   }
-  return out;
-}
+
+private:
+  [[nodiscard]] bool deep(std::size_t i, double w) const {
+    return w > -kInf && before_[i] > w + depth_ && after_[i] > w + depth_;
+  }
+
+  double depth_, step_, lo_ = 0.0;
+  std::vector<double> before_, after_;
+  std::vector<std::array<double, 2>> intervals_;
+};
 
 // `cover` without the intervals of `gaps` (both ascending and disjoint).
 std::vector<std::array<double, 2>> minus(const std::vector<std::array<double, 2>>& cover,
@@ -195,20 +221,17 @@ Section mesh_section(std::span<const Polyline> cut, const ProfileAxes& axes, con
   const Envelope envelope(cut, axes);
   Section section;
   section.cover = envelope.cover();
-  const std::vector<std::array<double, 2>> hidden =
-      pits(envelope, section.cover, options.hidden_depth_mm,
-           std::max(options.hidden_reach_mm, options.max_gap_mm), kPitStepMm);
-  const auto in_pit = [&](double u) {
-    return std::ranges::any_of(hidden, [&](const auto& pit) { return u > pit[0] && u < pit[1]; });
-  };
+  const Pits pits(envelope, section.cover, options.hidden_depth_mm,
+                  std::max(options.hidden_reach_mm, options.max_gap_mm), kPitStepMm);
   for (const Polyline& line : cut)
     for (const Vec3& p : line.points) {
       const double u = axes.along.dot(p), w = axes.front.dot(p);
       // Visible: nothing in front at this height (a relative tolerance for the interpolated depths).
-      if (w >= envelope.front(u) - 1e-9 * (1.0 + std::abs(w)) && !in_pit(u)) section.points.push_back(p);
+      if (w >= envelope.front(u) - 1e-9 * (1.0 + std::abs(w)) && !pits.hides(u, w))
+        section.points.push_back(p);
     }
   order(section.points, axes);
-  section.cover = minus(section.cover, hidden);
+  section.cover = minus(section.cover, pits.intervals());
   return section;
 }
 
@@ -427,9 +450,13 @@ Reach reach(const Section& section, const ProfileAxes& axes, double seed, const 
     if ((u - from) * dir >= 0.0 && (out.end - u) * dir >= 0.0) heights.push_back(u);
   }
   if (dir < 0) std::reverse(heights.begin(), heights.end());
+  // Within the last window before the end, the end itself is looked at, as if a window away: a curve must
+  // not end on a wall (the edge of a scan cut across the chin, seen from the front, falls straight back).
+  const std::optional<Vec3> last = section_at(section, axes, out.end);
   for (double u : heights) {
     const std::optional<Vec3> here = section_at(section, axes, u);
-    const std::optional<Vec3> ahead = section_at(section, axes, u + dir * options.window_mm);
+    std::optional<Vec3> ahead = section_at(section, axes, u + dir * options.window_mm);
+    if (!ahead && std::abs(out.end - u) < options.window_mm) ahead = last;
     if (!here || !ahead) continue;
     if (axes.front.dot(*here - *ahead) > steep * options.window_mm) return {u, ReachEnd::TurnsAway};
   }

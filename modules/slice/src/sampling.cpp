@@ -70,6 +70,42 @@ std::vector<std::vector<double>> arc_increments(std::span<const HeightTable> tab
   return out;
 }
 
+// Relative heights whose gaps change by at most kMaxGapRatio from one to the next: the surface's cosine
+// series in v through samples that crowd abruptly (under the nose tip, where a profile runs almost level)
+// overshoots in height between them and folds the surface back on itself (ict_02: 0.08 % of the face's
+// area facing away, a fold 0.04 mm deep under the nose). Small gaps beside large ones are widened, taking
+// the room from the large ones, until the ratio holds.
+constexpr double kMaxGapRatio = 2.5;
+std::vector<double> limited_gaps(std::vector<double> heights) {
+  const std::size_t k = heights.size();
+  if (k < 3) return heights;
+  std::vector<double> gap(k - 1);
+  for (std::size_t i = 0; i + 1 < k; ++i)
+    gap[i] = std::max(heights[i + 1] - heights[i], 0.0);
+  for (int pass = 0; pass < 200; ++pass) {
+    bool changed = false;
+    for (std::size_t i = 0; i < gap.size(); ++i) {
+      double floor = 0.0;
+      if (i > 0) floor = std::max(floor, gap[i - 1] / kMaxGapRatio);
+      if (i + 1 < gap.size()) floor = std::max(floor, gap[i + 1] / kMaxGapRatio);
+      if (gap[i] < floor * (1.0 - 1e-9)) {
+        gap[i] = floor;
+        changed = true;
+      }
+    }
+    double total = 0.0;
+    for (double g : gap)
+      total += g;
+    for (double& g : gap)
+      g /= total;
+    if (!changed) break;
+  }
+  for (std::size_t i = 0; i + 1 < k; ++i)
+    heights[i + 1] = heights[i] + gap[i];
+  heights.back() = 1.0;
+  return heights;
+}
+
 // K relative heights from 0 to 1 between which the curves' arc length advances evenly: the root mean square
 // of the curves' increments, each curve weighted by `weights`. The root mean square leans towards the curves
 // that are long there (the nose, the lips), which the plain mean dilutes by the outer curves: on
@@ -94,7 +130,7 @@ std::vector<double> even_heights(const std::vector<std::vector<double>>& increme
     out[i] = interpolate(cumulative, heights, static_cast<double>(i) / static_cast<double>(k - 1));
   out.front() = 0.0;
   out.back() = 1.0;
-  return out;
+  return limited_gaps(out);
 }
 
 // The spline parameters where the curve is at `heights` (its ends exactly at 0 and 1).

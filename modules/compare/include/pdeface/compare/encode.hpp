@@ -4,12 +4,14 @@
 //! document `pdeface::pdef` encodes filled in (`pdeface encode`, `pdeface convert scan.ply face.pdef`).
 
 #include "pdeface/align/pipeline.hpp"
+#include "pdeface/compare/fidelity.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/pdef/pdef.hpp"
 #include "pdeface/slice/profiles.hpp"
 
+#include <optional>
 #include <string>
 
 namespace pdeface::compare {
@@ -32,6 +34,10 @@ struct EncodeRequest {
   bool store_landmarks = false; //!< also store the landmarks (canonical frame)
   std::string name;             //!< stored when not empty
   std::string source;           //!< the scan's name, for errors
+  //! What the decoded file must meet (`self_check`: the file's bytes decoded and measured against the scan
+  //! on its face mask); nullopt: not checked (a caller that measures the result itself).
+  std::optional<CheckLimits> check = CheckLimits{};
+  bool force = false; //!< a file that fails its check is returned anyway (`EncodeOutcome::check` says why)
 };
 
 struct EncodeOutcome {
@@ -39,10 +45,11 @@ struct EncodeOutcome {
   slice::ProfileSet profiles;
   pdef::Face face;
   pdef::Encoded encoded;
+  std::optional<SelfCheck> check; //!< when the request asked for it
 };
 
 //! `pdeface encode`: aligned (landmarks detected or from a file), then `encode_aligned`. Errors: those of
-//! each stage, naming `request.source`.
+//! each stage, naming `request.source`, and `SelfCheck` when the decoded file is off (unless `force`).
 [[nodiscard]] Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& request);
 
 //! The same with the scan's `alignment` already made (`request.landmarks` unused): sliced, the surface's

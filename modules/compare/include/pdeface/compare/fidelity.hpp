@@ -10,6 +10,8 @@
 
 #include <array>
 #include <memory>
+#include <string>
+#include <vector>
 
 namespace pdeface::compare {
 
@@ -110,5 +112,48 @@ private:
   explicit FaceYardstick(std::shared_ptr<const State> state) : state_(std::move(state)) {}
   std::shared_ptr<const State> state_;
 };
+
+//! The share of `mesh`'s area inside `mask` (canonical frame) whose triangles face away from the viewer
+//! (normal · z < 0, with the winding the PDE surface and every reader keep: counter-clockwise seen from the
+//! front): a surface folded back over itself. 0 for a mesh without triangles or without area in the mask.
+[[nodiscard]] double facing_away(const Mesh& mesh, const slice::FaceMask& mask);
+
+//! What a result must meet to be written (`self_check`). Every figure is judged on the face mask, which
+//! comes from the landmarks and the scan (`slice::profile_planes`), not from the curves' own region. The
+//! defaults pass every shared scan at every ratio of 5–60 % with room to spare (docs/compare.md,
+//! "Self-check") and refuse a surface folded over a head, sliced off the face or badly aligned.
+struct CheckLimits {
+  double max_mean_mm = 1.0; //!< the result's mean distance to the scan inside the mask
+  //! The scan's face within `FidelityOptions::covered_within_mm` of the result: at least this share.
+  double min_coverage = 0.75;
+  double max_facing_away = 0.002; //!< the share of the result's area in the mask facing away (`facing_away`)
+};
+
+//! A result measured against its scan, and what it failed.
+struct SelfCheck {
+  double mean_mm = 0.0;              //!< result → scan inside the mask (mm)
+  double coverage = 0.0;             //!< the scan's face within 1 mm of the result (share)
+  double facing_away = 0.0;          //!< share of the result's area in the mask facing away from the viewer
+  std::vector<std::string> failures; //!< "mean distance 12.981 mm > 0.6 mm", ...; empty when it passed
+  [[nodiscard]] bool passed() const { return failures.empty(); }
+  //! The failures joined ("...; ..."), or the figures when it passed.
+  [[nodiscard]] std::string summary() const;
+};
+
+//! The figures of `fidelity` and the `facing_away` share of the result judged against `limits`.
+[[nodiscard]] SelfCheck self_check(const MeshFidelity& fidelity, double facing_away,
+                                   const CheckLimits& limits = {});
+
+//! `result` (canonical frame, mm) measured on `yardstick` and judged. Errors: those of
+//! `FaceYardstick::measure`.
+[[nodiscard]] Result<SelfCheck> self_check(const FaceYardstick& yardstick, const Mesh& result,
+                                           const CheckLimits& limits = {});
+
+//! `result` (canonical frame, mm) checked against `scan` (canonical) on the face mask of `profiles`: the
+//! check, or a `SelfCheck` error naming `source` and what failed when it fails and `force` is false. A
+//! result that cannot be measured at all (no surface in the mask) fails.
+[[nodiscard]] Result<SelfCheck> checked(const Mesh& scan, const slice::ProfileSet& profiles,
+                                        const Mesh& result, const CheckLimits& limits, bool force,
+                                        std::string_view source);
 
 } // namespace pdeface::compare

@@ -41,6 +41,10 @@ struct ReconstructRequest {
   bool profiles_json = false; //!< also make the curves' document
   bool preview = false;       //!< also make the picture (`reconstruction_preview_svg`)
   std::string source;         //!< the scan's name
+  CheckLimits check;          //!< what the reconstruction must meet (`self_check`)
+  //! A reconstruction that fails its self-check is returned anyway (`ReconstructOutcome::check` says what
+  //! failed) instead of as a `SelfCheck` error.
+  bool force = false;
 };
 
 struct ReconstructOutcome {
@@ -48,13 +52,15 @@ struct ReconstructOutcome {
   Reconstruction reconstruction;
   std::optional<Fidelity> fidelity; //!< how faithful it is (mm), or why it could not be measured:
   std::string fidelity_failure;
+  SelfCheck check; //!< the reconstruction against the scan on its face mask (passed, unless `force`)
   double scan_units_per_mm = 1.0; //!< to state distances in the scan's own units
   std::string profiles_json;      //!< when asked
   std::string preview_svg;        //!< when asked
 };
 
 //! `pdeface reconstruct`: aligned, reconstructed (`reconstruct`), measured (`measure_fidelity`; a
-//! measurement that fails is reported in the outcome, not as an error). Errors name `request.source`.
+//! measurement that fails is reported in the outcome, not as an error) and checked (`self_check` on the
+//! face mask). Errors name `request.source`; `SelfCheck` when the reconstruction is off (unless `force`).
 [[nodiscard]] Result<ReconstructOutcome> reconstruct_request(const Mesh& scan,
                                                              const ReconstructRequest& request);
 

@@ -48,6 +48,9 @@ struct CompareOptions {
   //! where the mesh codecs otherwise spend their bytes on what the face mask does not judge.
   bool crop_face = false;
   FidelityOptions fidelity;
+  //! A `.pdef` row whose decoded surface fails this check (`self_check` on the face mask) is a failed row
+  //! with the reason, as `pdeface encode` would refuse to write the file.
+  CheckLimits check;
   //! Heat maps: the error (mesh → scan, mm) coloured from 0 (blue) to this (red) on the GLBs written.
   double heat_max_mm = 1.0;
   double heat_ratio =

@@ -21,6 +21,10 @@ public:
 
   //! Front-most z of the triangles (z-buffer), or of splatted points (radius `splat` mm) for a cloud.
   void rasterise(std::span<const Vec3> positions, std::span<const Triangle> triangles, double splat);
+  //! Forgets the cells that see through a hole of the surface: those more than `depth` mm behind a cell
+  //! within `reach` mm on both sides of them, along a row or along a column (the inside of a head through
+  //! an eye hole, the far side of a bust through a capture hole). They become holes.
+  void drop_pits(double depth, double reach);
   //! Fills holes up to `max_gap` cells wide by averaging known neighbours, a few passes.
   void fill_holes(int max_gap);
 

@@ -31,6 +31,7 @@ enum class ErrorCode {
   InvalidArgument,    //!< an option value outside its range
   NoFace,             //!< a scan in which no face can be found
   ChecksumMismatch,   //!< the data's checksum does not match: it was damaged after it was written
+  SelfCheck,          //!< a result measured against its input is off: refused rather than written
 };
 
 //! A short lowercase name for the code ("truncated", "bad magic", ...).
