@@ -1,5 +1,7 @@
 #include "preflight.hpp"
 
+#include "pdeface/core/text.hpp"
+
 #include "gltf_constants.hpp"
 #include "pdeface/draco/detail.hpp"
 
@@ -46,7 +48,8 @@ std::string parse_error_text(const json::parse_error& e) {
   const std::string_view what = e.what();
   const std::size_t column = what.find("column ");
   const std::size_t colon = what.find(": ", column == std::string_view::npos ? 0 : column);
-  return std::string(colon == std::string_view::npos ? what : what.substr(colon + 2));
+  return excerpt(colon == std::string_view::npos ? what : what.substr(colon + 2),
+                 200); // nlohmann quotes the token
 }
 
 const json* member(const json* object, const char* key) {
@@ -64,11 +67,6 @@ const json& array_of(const json& doc, const char* key) {
   static const json empty = json::array();
   const json* a = member(&doc, key);
   return a && a->is_array() ? *a : empty;
-}
-
-std::string shorten(std::string_view text) {
-  constexpr std::size_t kMax = 60;
-  return text.size() <= kMax ? std::string(text) : std::string(text.substr(0, kMax)) + "...";
 }
 
 // The bytes tinygltf's base64 decoder makes of a data URI: it stops at the first '=' or other character
@@ -116,7 +114,7 @@ private:
     if (!v || !v->is_string()) return error(ErrorCode::Malformed, "asset.version is missing");
     const std::string text = v->get<std::string>();
     if (!text.starts_with("2."))
-      return error(ErrorCode::UnsupportedVersion, fmt::format("glTF {}: we read glTF 2.0", shorten(text)));
+      return error(ErrorCode::UnsupportedVersion, fmt::format("glTF {}: we read glTF 2.0", excerpt(text)));
     return std::nullopt;
   }
 
@@ -131,7 +129,7 @@ private:
           std::ranges::any_of(kLooks, [&](std::string_view prefix) { return name.starts_with(prefix); }))
         continue;
       return error(ErrorCode::UnsupportedFormat,
-                   fmt::format("the file requires the extension {}, which we do not read", shorten(name)));
+                   fmt::format("the file requires the extension {}, which we do not read", excerpt(name)));
     }
     return std::nullopt;
   }
@@ -159,7 +157,7 @@ private:
                           i));
         return error(
             ErrorCode::UnsupportedFormat,
-            fmt::format("external buffer '{}' not supported: use .glb or embedded data URIs", shorten(text)));
+            fmt::format("external buffer '{}' not supported: use .glb or embedded data URIs", excerpt(text)));
       }
       if (!c_.glb || i != 0)
         return error(

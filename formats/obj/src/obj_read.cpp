@@ -4,12 +4,12 @@
 // char (third_party_notes/tinyobjloader.md). The validator checks every statement we read and gives its
 // line and column; tinyobjloader then does the parsing.
 
+#include "pdeface/core/text.hpp"
 #include "pdeface/obj/obj.hpp"
 
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -25,7 +25,8 @@ namespace {
 using text::Scanner;
 using text::Token;
 
-constexpr std::size_t kMaxCorners = 255; // tinyobjloader stores a face's corner count in an unsigned char
+constexpr std::size_t kMaxIgnoredNamed = 8; // kinds of statement a note names
+constexpr std::size_t kMaxCorners = 255;    // tinyobjloader stores a face's corner count in an unsigned char
 
 enum Kind { Vertex, Texcoord, Normal };
 constexpr std::array<std::string_view, 3> kKindNames{"vertex", "texture coordinate", "normal"};
@@ -36,8 +37,9 @@ struct Survey {
   std::size_t colored = 0;              // v statements with r g b
   std::size_t short_faces = 0;          // faces with fewer than 3 corners (tinyobjloader skips them)
   Units units = Units::Unknown;
-  std::string name; // of the first 'o'
-  std::vector<std::string> ignored;
+  std::string name;                 // of the first 'o'
+  std::vector<std::string> ignored; // the first kMaxIgnoredNamed kinds of statement not read
+  std::size_t more_ignored = 0;     // statements of other kinds not read
 };
 
 class Validator {
@@ -100,8 +102,12 @@ private:
     }
     const bool known =
         word.empty() || word == "o" || word == "g" || word == "s" || word == "usemtl" || word == "mtllib";
-    if (!known && std::ranges::find(survey_.ignored, word) == survey_.ignored.end())
-      survey_.ignored.emplace_back(word);
+    if (!known && std::ranges::find(survey_.ignored, word) == survey_.ignored.end()) {
+      if (survey_.ignored.size() < kMaxIgnoredNamed)
+        survey_.ignored.emplace_back(word);
+      else
+        ++survey_.more_ignored;
+    }
     return {};
   }
 
@@ -119,9 +125,10 @@ private:
       const std::optional<double> v = text::parse_double(t.text);
       if (!v)
         return fail(ErrorCode::Malformed, t.location(),
-                    fmt::format("expected a number after {}, found '{}'", keyword.text, t.text));
+                    fmt::format("expected a number after {}, found '{}'", keyword.text, excerpt(t.text)));
       if (!std::isfinite(*v) || std::abs(*v) > FLT_MAX)
-        return fail(ErrorCode::NonFinite, t.location(), fmt::format("{} is not a finite float", t.text));
+        return fail(ErrorCode::NonFinite, t.location(),
+                    fmt::format("{} is not a finite float", excerpt(t.text)));
     }
     if (count < least || count > most)
       return fail(ErrorCode::Malformed, keyword.location(),
@@ -184,7 +191,7 @@ private:
 
   Error bad_corner(const Token& t) const {
     return fail(ErrorCode::Malformed, t.location(),
-                fmt::format("expected v, v/vt, v//vn or v/vt/vn, found '{}'", t.text));
+                fmt::format("expected v, v/vt, v//vn or v/vt/vn, found '{}'", excerpt(t.text)));
   }
 
   std::string& text_;
@@ -253,6 +260,11 @@ private:
 
 Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
   std::string text(bytes);
+  // tinyobjloader's blanks are space and tab, and it ends a line at CR: the other blanks the validator
+  // knows (CR, VT, FF) become spaces, so that both read the same statements ("v\v1 0 0" is no vertex to
+  // tinyobjloader). Lines and columns do not move.
+  std::ranges::replace_if(
+      text, [](char c) { return c == '\r' || c == '\v' || c == '\f'; }, ' ');
   Result<Survey> survey = Validator(text, source).run();
   if (!survey) return std::move(survey).error();
   if (survey->counts[Vertex] == 0)
@@ -265,10 +277,16 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (!reader.ParseFromString(text, /*mtl_text=*/"", config)) { // materials: never opened
     std::string message = reader.Error();
     std::ranges::replace(message, '\n', ' ');
-    return make_error(ErrorCode::Malformed, fmt::format("tinyobjloader: {}", message), std::string(source));
+    return make_error(ErrorCode::Malformed, fmt::format("tinyobjloader: {}", excerpt(message, 200)),
+                      std::string(source));
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const std::size_t vertices = attrib.vertices.size() / 3;
+  if (vertices != static_cast<std::size_t>(survey->counts[Vertex]))
+    return make_error(
+        ErrorCode::Malformed,
+        fmt::format("tinyobjloader read {} vertices where the file has {}", vertices, survey->counts[Vertex]),
+        std::string(source));
   Mesh mesh;
   mesh.name = survey->name;
   mesh.units = survey->units;
@@ -322,7 +340,9 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (survey->short_faces != 0)
     note(fmt::format("{} faces with fewer than 3 corners skipped", survey->short_faces));
   if (!survey->ignored.empty())
-    note(fmt::format("statements not read: {}", fmt::join(survey->ignored, ", ")));
+    note(fmt::format(
+        "statements not read: {}{}", excerpt_list(survey->ignored),
+        survey->more_ignored == 0 ? "" : fmt::format(" and {} more statements", survey->more_ignored)));
   if (Result<void> valid = validate(mesh, source); !valid) return std::move(valid).error();
   return mesh;
 }

@@ -311,6 +311,9 @@ Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::stri
   if (notes && importer.face_colors)
     notes->push_back(fmt::format("{}: face colours dropped: meshes hold vertex colours only", source));
   if (Result<void> valid = validate(importer.mesh, source); !valid) return std::move(valid).error();
+  // An empty mesh is read from no file and written by no writer (`check_writable`).
+  if (importer.mesh.positions.empty())
+    return make_error(ErrorCode::Empty, "no vertices in the file", std::string(source));
   return std::move(importer.mesh);
 }
 

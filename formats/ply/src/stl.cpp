@@ -2,6 +2,7 @@
 // crashes on a lying facet count, accepts a cut-off file, and reads words and "nan" without complaint
 // (third_party_notes/openmesh.md). It merges coincident corners into shared vertices.
 
+#include "pdeface/core/text.hpp"
 #include "pdeface/ply/ply.hpp"
 
 #include "openmesh_io.hpp"
@@ -126,7 +127,8 @@ private:
     if (t.empty())
       return fail(ErrorCode::Truncated, scan_.here(),
                   fmt::format("the file ends where {} was expected", expected));
-    return fail(ErrorCode::Malformed, t.location(), fmt::format("expected {}, found '{}'", expected, t.text));
+    return fail(ErrorCode::Malformed, t.location(),
+                fmt::format("expected {}, found '{}'", expected, excerpt(t.text)));
   }
   Result<void> keyword(std::string_view word) {
     const Token t = scan_.next();
@@ -141,7 +143,7 @@ private:
       if (!v) return unexpected(t, what);
       if (finite && !std::isfinite(static_cast<float>(*v)))
         return fail(ErrorCode::NonFinite, t.location(),
-                    fmt::format("{} is {}, not a finite float", what, t.text));
+                    fmt::format("{} is {}, not a finite float", what, excerpt(t.text)));
     }
     return {};
   }
@@ -177,7 +179,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
 }
 
 Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   if (mesh.is_point_cloud())
     return make_error(ErrorCode::InvalidArgument,
                       "STL cannot hold a point cloud (the mesh has no triangles)");
