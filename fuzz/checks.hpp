@@ -70,6 +70,15 @@ inline void round_trip(const Mesh& mesh, formats::Format format, const formats::
   if (!back) broken(std::string(info.name) + " writes what it cannot read: " + back.error().to_string());
   check_notes(notes);
   const Mesh& m = back->mesh;
+  // STL keeps the triangles whose corners are three different points (as float32): it has no vertices,
+  // only corners, merged where they are equal.
+  std::size_t triangles = mesh.triangle_count();
+  if (format == formats::Format::Stl)
+    triangles = static_cast<std::size_t>(std::ranges::count_if(mesh.triangles, [&](const Triangle& t) {
+      const Vec3f a = mesh.positions[t[0]].cast<float>(), b = mesh.positions[t[1]].cast<float>(),
+                  c = mesh.positions[t[2]].cast<float>();
+      return a != b && b != c && a != c;
+    }));
   const bool merges = format == formats::Format::Stl ||
                       (format == formats::Format::Draco && options.draco_level > 0) ||
                       (format == formats::Format::Glb && options.draco_in_gltf);

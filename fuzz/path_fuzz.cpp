@@ -20,7 +20,7 @@ namespace formats = pdeface::formats;
 
 // Detection and slicing are bounded whatever the input, but take a second or more on a whole scan: larger
 // meshes are only converted, so that the fuzzer keeps its pace (scans are what the integration tests run).
-constexpr std::size_t kMaxEncodedVertices = 20000;
+constexpr std::size_t kMaxEncodedVertices = 3000;
 
 void encode_and_decode(const pdeface::Mesh& mesh) {
   pdeface::compare::EncodeRequest request;

@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets (fuzz/: one per reader, the .pdef decoder, and the whole path) with clang in
 # build-san/ (address and undefined-behaviour sanitizers; shared with scripts/sanitize.sh) and runs each for
 # SECONDS (default 25), seeded with tests/data/ and with those fixtures converted to every format. A target's
-# corpus grows in build-san/corpus/<target>/ across runs; crashes, leaks, timeouts (> 10 s for one input, 30
+# corpus grows in build-san/corpus/<target>/ across runs; crashes, leaks, timeouts (> 10 s for one input, 60
 # s for the whole path) and inputs that need more than 2 GB are written to build-san/findings/. The exit
 # status is non-zero if any target found something. TARGETS (default: all) limits the run, e.g.
 #   scripts/fuzz.sh 600 obj_fuzz ply_fuzz
@@ -39,7 +39,7 @@ for target in "${targets[@]}"; do
   mkdir -p "$corpus"
   dirs=()
   for d in ${corpus_of[$target]}; do dirs+=("$seeds/$d"); done
-  timeout=10; [[ $target == path_fuzz ]] && timeout=30
+  timeout=10; [[ $target == path_fuzz ]] && timeout=60
   dict=(); [[ -f "$root/fuzz/${target%_fuzz}.dict" ]] && dict=(-dict="$root/fuzz/${target%_fuzz}.dict")
   echo "pdeface: fuzzing $target for $seconds s" >&2
   if ! "$build/fuzz/$target" "$corpus" "${dirs[@]}" "${dict[@]}" -max_total_time="$seconds" -max_len=65536 \

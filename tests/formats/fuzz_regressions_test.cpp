@@ -22,6 +22,12 @@ const Finding kFindings[] = {
      1,
      {},
      "'v\\v1 0 0 ...': a vertex to the validator (VT is a blank), none to tinyobjloader: an empty mesh"},
+    {"obj/fuzz_exponent.obj", 1, {},
+     "'0e801' (a colour): 0 to fast_float, 0 x inf = NaN to tinyobjloader; written as -nan, refused on read"},
+    {"ply/fuzz_tiny_corners.stl", 4, {},
+     "corners 5e-39 apart: merged by OpenMesh's STL epsilon (FLT_MIN) into a degenerate facet on reading back"},
+    {"gltf/fuzz_number_overflow.gltf", {}, ErrorCode::Malformed,
+     "\"componentTyp\":1e526: nlohmann's out_of_range.406 escaped the reader (exit 3, internal error)"},
 };
 
 void PrintTo(const Finding& f, std::ostream* os) { *os << f.file; }

@@ -49,11 +49,16 @@ Result<tinygltf::Model> load(const Container& c, std::string_view source, Notes*
   loader.SetImageLoader(&skip_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  const bool ok = c.glb ? loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                                      reinterpret_cast<const unsigned char*>(c.bytes.data()),
-                                                      static_cast<unsigned>(c.bytes.size()))
-                        : loader.LoadASCIIFromString(&model, &err, &warn, c.json.data(),
-                                                     static_cast<unsigned>(c.json.size()), "");
+  bool ok = false;
+  try { // our preflight has checked what tinygltf takes on trust; anything it throws is still bad data
+    ok = c.glb ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                             reinterpret_cast<const unsigned char*>(c.bytes.data()),
+                                             static_cast<unsigned>(c.bytes.size()))
+               : loader.LoadASCIIFromString(&model, &err, &warn, c.json.data(),
+                                            static_cast<unsigned>(c.json.size()), "");
+  } catch (const std::exception& e) {
+    err = e.what();
+  }
   if (!ok)
     return make_error(ErrorCode::Malformed, "tinygltf: " + draco::detail::message_text(err),
                       std::string(source));

@@ -335,6 +335,11 @@ Result<Preflight> preflight(const Container& container, std::string_view source)
     // nlohmann counts the bytes read, the failing one included.
     return error(ErrorCode::Malformed, "invalid JSON: " + parse_error_text(e),
                  container.json_location(e.byte == 0 ? 0 : e.byte - 1));
+  } catch (const json::exception& e) { // out_of_range.406: a number beyond a double ("1e526")
+    const std::string_view what = e.what();
+    return error(ErrorCode::Malformed,
+                 "invalid JSON: " + excerpt(what.substr(std::min(what.size(), what.find("] ") + 2)), 200),
+                 Location{});
   }
   if (!doc.is_object())
     return error(ErrorCode::Malformed, "the glTF JSON is not an object", container.json_location(0));

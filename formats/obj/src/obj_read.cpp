@@ -2,7 +2,8 @@
 // "nan", "1.5.5" or a missing coordinate as a number without complaint, passes relative indices that reach
 // before the first vertex, fails on a comment after a face, and counts a face's corners in an unsigned
 // char (third_party_notes/tinyobjloader.md). The validator checks every statement we read and gives its
-// line and column; tinyobjloader then does the parsing.
+// line and column, and keeps every value it parsed (exactly, with fast_float: tinyobjloader reads "0e801"
+// as a NaN); tinyobjloader then reads the faces.
 
 #include "pdeface/core/text.hpp"
 #include "pdeface/obj/obj.hpp"
@@ -32,7 +33,11 @@ enum Kind { Vertex, Texcoord, Normal };
 constexpr std::array<std::string_view, 3> kKindNames{"vertex", "texture coordinate", "normal"};
 
 // What the validator learnt about the document.
+constexpr std::array<float, 3> kWhite{1.0F, 1.0F, 1.0F};
+
 struct Survey {
+  // The values of the v (x y z, and r g b), vt (u v) and vn (x y z) statements, in order.
+  std::vector<float> positions, colors, texcoords, normals;
   std::array<std::int64_t, 3> counts{}; // v, vt, vn statements
   std::size_t colored = 0;              // v statements with r g b
   std::size_t short_faces = 0;          // faces with fewer than 3 corners (tinyobjloader skips them)
@@ -117,10 +122,12 @@ private:
   }
 
   // The numbers after `keyword` up to the end of the line: between `least` and `most` of them, each finite
-  // and within float range (tinyobjloader stores floats).
+  // and within float range; kept in the survey as floats (what tinyobjloader would store, but parsed
+  // exactly: its own parser reads "0e801" as 0 x inf, a NaN).
   Result<std::size_t> numbers(Scanner& scan, const Token& keyword, std::size_t least, std::size_t most,
                               int kind) {
     std::size_t count = 0;
+    std::array<float, 6> values{};
     for (Token t = scan.next_on_line(); !t.empty(); t = scan.next_on_line(), ++count) {
       const std::optional<double> v = text::parse_double(t.text);
       if (!v)
@@ -129,6 +136,7 @@ private:
       if (!std::isfinite(*v) || std::abs(*v) > FLT_MAX)
         return fail(ErrorCode::NonFinite, t.location(),
                     fmt::format("{} is not a finite float", excerpt(t.text)));
+      if (count < values.size()) values[count] = static_cast<float>(*v);
     }
     if (count < least || count > most)
       return fail(ErrorCode::Malformed, keyword.location(),
@@ -136,6 +144,14 @@ private:
                       ? fmt::format("{} needs {} numbers, found {}", keyword.text, least, count)
                       : fmt::format("{} needs {} to {} numbers, found {}", keyword.text, least, most, count));
     ++survey_.counts[kind];
+    std::vector<float>& out = kind == Vertex   ? survey_.positions
+                              : kind == Normal ? survey_.normals
+                                               : survey_.texcoords;
+    const std::size_t width = kind == Texcoord ? 2 : 3; // u v (v = 0 when absent), or x y z
+    out.insert(out.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(width));
+    if (kind == Vertex) // r g b, or white as tinyobjloader has it
+      survey_.colors.insert(survey_.colors.end(), count == 6 ? values.begin() + 3 : kWhite.begin(),
+                            count == 6 ? values.end() : kWhite.end());
     return count;
   }
 
@@ -281,22 +297,25 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
                       std::string(source));
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const std::size_t vertices = attrib.vertices.size() / 3;
-  if (vertices != static_cast<std::size_t>(survey->counts[Vertex]))
-    return make_error(
-        ErrorCode::Malformed,
-        fmt::format("tinyobjloader read {} vertices where the file has {}", vertices, survey->counts[Vertex]),
-        std::string(source));
+  const std::size_t vertices = survey->positions.size() / 3;
+  // tinyobjloader gives the faces; the values are the validator's, read exactly. Both saw the same v, vt
+  // and vn statements, so the faces' indices refer to them.
+  if (attrib.vertices.size() != survey->positions.size() || attrib.normals.size() != survey->normals.size() ||
+      attrib.texcoords.size() != survey->texcoords.size())
+    return make_error(ErrorCode::Malformed,
+                      fmt::format("tinyobjloader read {} vertices where the file has {}",
+                                  attrib.vertices.size() / 3, vertices),
+                      std::string(source));
+  const std::vector<float>& xyz = survey->positions;
   Mesh mesh;
   mesh.name = survey->name;
   mesh.units = survey->units;
   mesh.positions.reserve(vertices);
   for (std::size_t i = 0; i < vertices; ++i)
-    mesh.positions.emplace_back(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
-                                attrib.vertices[3 * i + 2]);
+    mesh.positions.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
 
-  CornerAttribute normals(attrib.normals, 3, vertices);
-  CornerAttribute texcoords(attrib.texcoords, 2, vertices);
+  CornerAttribute normals(survey->normals, 3, vertices);
+  CornerAttribute texcoords(survey->texcoords, 2, vertices);
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     std::size_t first = 0;
     for (const unsigned char corners : shape.mesh.num_face_vertices) {
@@ -332,7 +351,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
       mesh.texcoords.emplace_back(texcoords.at(i, 0), texcoords.at(i, 1));
   if (survey->colored == vertices) {
     for (std::size_t i = 0; i < vertices; ++i)
-      mesh.colors.emplace_back(attrib.colors[3 * i], attrib.colors[3 * i + 1], attrib.colors[3 * i + 2],
+      mesh.colors.emplace_back(survey->colors[3 * i], survey->colors[3 * i + 1], survey->colors[3 * i + 2],
                                1.0f);
   } else if (survey->colored != 0) {
     note(fmt::format("vertex colours dropped: only {} of {} vertices have them", survey->colored, vertices));

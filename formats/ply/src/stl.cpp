@@ -59,6 +59,7 @@ bool is_binary(std::string_view bytes) {
 struct Checked {
   std::string_view data; // what OpenMesh reads: the file up to its last facet
   Units units = Units::Unknown;
+  std::uint64_t facets = 0;
 };
 
 Result<Checked> check_binary(std::string_view bytes, std::string_view source, Notes* notes) {
@@ -94,7 +95,7 @@ Result<Checked> check_binary(std::string_view bytes, std::string_view source, No
   if (notes && end < bytes.size())
     notes->push_back(fmt::format("{}: {} bytes after the last facet ignored (from byte {})", source,
                                  bytes.size() - end, end));
-  return Checked{bytes.substr(0, end), units_in(bytes.substr(0, kHeaderBytes))};
+  return Checked{bytes.substr(0, end), units_in(bytes.substr(0, kHeaderBytes)), facets};
 }
 
 class AsciiChecker {
@@ -116,6 +117,7 @@ public:
     if (facets == 0) return make_error(ErrorCode::Empty, "the STL file has no facets", std::string(source_));
     scan_.skip_line();
     checked.data = bytes_.substr(0, scan_.offset());
+    checked.facets = facets;
     return checked;
   }
 
@@ -174,7 +176,12 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (!checked) return std::move(checked).error();
   Result<Mesh> mesh = ply::detail::read_openmesh(std::string(checked->data),
                                                  {.extension = "stl", .binary = binary}, source, notes);
-  if (mesh) mesh->units = checked->units;
+  if (!mesh) return mesh;
+  mesh->units = checked->units;
+  // OpenMesh skips the facets two of whose corners are the same point.
+  if (const std::uint64_t skipped = checked->facets - mesh->triangle_count(); skipped > 0 && notes)
+    notes->push_back(
+        fmt::format("{}: {} degenerate facets skipped (two corners at the same point)", source, skipped));
   return mesh;
 }
 
