@@ -5,9 +5,9 @@
 // line and column, and keeps every value it parsed (exactly, with fast_float: tinyobjloader reads "0e801"
 // as a NaN); tinyobjloader then reads the faces.
 
-#include "pdeface/core/text.hpp"
 #include "pdeface/obj/obj.hpp"
 
+#include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
@@ -32,9 +32,9 @@ constexpr std::size_t kMaxCorners = 255;    // tinyobjloader stores a face's cor
 enum Kind { Vertex, Texcoord, Normal };
 constexpr std::array<std::string_view, 3> kKindNames{"vertex", "texture coordinate", "normal"};
 
-// What the validator learnt about the document.
-constexpr std::array<float, 3> kWhite{1.0F, 1.0F, 1.0F};
+constexpr std::array<float, 3> kWhite{1.0F, 1.0F, 1.0F}; // a vertex without r g b, as tinyobjloader has it
 
+// What the validator learnt about the document.
 struct Survey {
   // The values of the v (x y z, and r g b), vt (u v) and vn (x y z) statements, in order.
   std::vector<float> positions, colors, texcoords, normals;
@@ -149,7 +149,7 @@ private:
                                                : survey_.texcoords;
     const std::size_t width = kind == Texcoord ? 2 : 3; // u v (v = 0 when absent), or x y z
     out.insert(out.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(width));
-    if (kind == Vertex) // r g b, or white as tinyobjloader has it
+    if (kind == Vertex) // r g b, or white
       survey_.colors.insert(survey_.colors.end(), count == 6 ? values.begin() + 3 : kWhite.begin(),
                             count == 6 ? values.end() : kWhite.end());
     return count;

@@ -3,10 +3,10 @@
 // cannot see what the header line announces (COFF, NOFF), so it reads every stream as plain OFF
 // (third_party_notes/openmesh.md).
 
-#include "pdeface/core/text.hpp"
 #include "pdeface/ply/ply.hpp"
 
 #include "openmesh_io.hpp"
+#include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>

@@ -6,7 +6,6 @@
 #include <OpenMesh/Core/IO/IOManager.hh>
 #include <OpenMesh/Core/IO/exporter/BaseExporter.hh>
 #include <OpenMesh/Core/IO/importer/BaseImporter.hh>
-#include <OpenMesh/Core/IO/reader/STLReader.hh>
 #include <OpenMesh/Core/Mesh/BaseKernel.hh>
 #include <OpenMesh/Core/System/omstream.hh>
 #include <fmt/format.h>
@@ -294,12 +293,8 @@ Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::stri
       OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexColor |
       OpenMesh::IO::Options::VertexTexCoord | OpenMesh::IO::Options::ColorAlpha |
       OpenMesh::IO::Options::FaceColor; // only to note that face colours are dropped
-  if (how.binary) options += OpenMesh::IO::Options::Binary;
   std::istringstream in(std::move(bytes));
   const std::optional<std::string> failed = run_openmesh("OpenMesh could not read the data", [&] {
-    // The STL reader merges corners closer than its epsilon (FLT_MIN by default: not even an ordering, and
-    // corners 5e-39 apart merged into degenerate facets); 0 merges only equal ones.
-    if (how.extension == "stl") OpenMesh::IO::STLReader().set_epsilon(0.0F);
     const bool ok = OpenMesh::IO::IOManager().read(in, std::string(how.extension), importer, options);
     importer.finish();
     return ok;
