@@ -82,11 +82,13 @@ inline void round_trip(const Mesh& mesh, formats::Format format, const formats::
   const bool merges = format == formats::Format::Stl ||
                       (format == formats::Format::Draco && options.draco_level > 0) ||
                       (format == formats::Format::Glb && options.draco_in_gltf);
-  if (m.triangle_count() != mesh.triangle_count() && format != formats::Format::Draco &&
-      !options.draco_in_gltf)
-    broken(std::string(info.name) + " changes the triangle count");
+  if (m.triangle_count() != triangles && format != formats::Format::Draco && !options.draco_in_gltf)
+    broken(std::string(info.name) + " changes the triangle count: " + std::to_string(mesh.triangle_count()) +
+           " (" + std::to_string(triangles) + " expected) read back as " +
+           std::to_string(m.triangle_count()));
   if (!merges && m.vertex_count() != mesh.vertex_count())
-    broken(std::string(info.name) + " changes the vertex count");
+    broken(std::string(info.name) + " changes the vertex count: " + std::to_string(mesh.vertex_count()) +
+           " read back as " + std::to_string(m.vertex_count()));
 }
 
 } // namespace pdeface::fuzz
