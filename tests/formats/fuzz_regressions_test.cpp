@@ -37,6 +37,10 @@ const Finding kFindings[] = {
      {},
      "corners 9e-44 apart: OpenMesh's STL reader merged them (FLT_MIN apart is equal to it), 6 of 8 facets "
      "lost in an STL round trip"},
+    {"ply/fuzz_one_triangle.off",
+     4,
+     {},
+     "one triangle: libdraco's sequential encoder (level 0) wrote data its own decoder refuses"},
     {"gltf/fuzz_number_overflow.gltf",
      {},
      ErrorCode::Malformed,
@@ -77,6 +81,14 @@ TEST_P(FuzzFinding, ReadsAsItShouldAndRoundTrips) {
         return a != b && b != c && a != c;
       }));
     if (format.format != Format::Draco) EXPECT_EQ(back->mesh.triangle_count(), triangles) << format.name;
+  }
+  // Draco at level 0 (vertex order kept) and inside a GLB: refused with a clear error, or read back.
+  for (const auto& [name, options] : {std::pair{"again0.drc", WriteOptions{.draco_level = 0}},
+                                      std::pair{"again.glb", WriteOptions{.draco_in_gltf = true}}}) {
+    const Result<std::string> out = encode_mesh(read->mesh, name, options);
+    if (!out) continue;
+    const Result<LoadedMesh> back = read_mesh(*out, name);
+    EXPECT_TRUE(back.ok()) << name << ": " << back.error().to_string();
   }
 }
 

@@ -205,6 +205,15 @@ Result<Encoded> encode(const Mesh& mesh, const WriteOptions& options, Notes* not
   } catch (const std::bad_alloc&) {
     return make_error(ErrorCode::CountTooLarge, "not enough memory to encode the mesh with Draco", mesh.name);
   }
+  // What libdraco wrote must decode again: its sequential encoder (level 0) writes a mesh of one triangle as
+  // data its own decoder refuses (found by path_fuzz; draco_decoder refuses it too).
+  if (Result<Decoded> back = decode(out.bytes, mesh.name, std::nullopt, nullptr); !back)
+    return make_error(ErrorCode::Malformed,
+                      fmt::format("libdraco wrote data it cannot decode again ({}){}", back.error().message,
+                                  options.level == 0 && mesh.triangle_count() == 1
+                                      ? ": it cannot hold one triangle at level 0, use a level of 1 to 10"
+                                      : ""),
+                      mesh.name);
   if (notes) {
     notes->push_back(position_error_note(mesh, options.position_bits));
     if (std::optional<std::string> note = dropped_vertices_note(mesh, options)) notes->push_back(*note);
