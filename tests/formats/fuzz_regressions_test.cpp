@@ -41,6 +41,11 @@ const Finding kFindings[] = {
      4,
      {},
      "one triangle: libdraco's sequential encoder (level 0) wrote data its own decoder refuses"},
+    {"gltf/fuzz_component_type.glb",
+     {},
+     ErrorCode::Malformed,
+     "a Draco attribute's accessor of componentType 5127: tinygltf sized its buffer as points x 3 x -1 bytes, "
+     "a 4 GB allocation"},
     {"gltf/fuzz_number_overflow.gltf",
      {},
      ErrorCode::Malformed,

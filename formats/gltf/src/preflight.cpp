@@ -298,6 +298,13 @@ private:
           std::ranges::find(decoded->attributes, id.get<int>(), &draco::detail::Attribute::unique_id);
       if (found == decoded->attributes.end())
         return malformed(fmt::format("the Draco data has no attribute {} (for {})", id.get<int>(), name));
+      // tinygltf sizes the decoded buffer by the accessor's componentType: an unknown one counts -1 bytes,
+      // and points x components x -1 asked for 4 GB (found by gltf_fuzz).
+      const std::optional<std::uint64_t> component =
+          unsigned_of(member(*accessor(member(attributes, name.c_str()), name), "componentType"));
+      if (component != 5120u && component != 5121u && component != 5122u && component != 5123u &&
+          component != 5125u && component != 5126u)
+        return malformed(fmt::format("{}'s accessor has no glTF componentType", excerpt(name)));
       const json* type = member(*accessor(member(attributes, name.c_str()), name), "type");
       const int expected = type && type->is_string() ? components_of(type->get<std::string>()) : 0;
       // tinygltf copies each value into a 4-element array.
