@@ -1,6 +1,7 @@
 // Every input a fuzz target found a fault with (fuzz/, docs/robustness.md), kept in tests/data/<format>/
 // as fuzz_*: each now reads as it should, and what it reads writes and reads back in every format.
 #include "pdeface/core/file.hpp"
+#include "pdeface/core/text.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface_test.hpp"
 
@@ -44,8 +45,13 @@ const Finding kFindings[] = {
     {"gltf/fuzz_component_type.glb",
      {},
      ErrorCode::Malformed,
-     "a Draco attribute's accessor of componentType 5127: tinygltf sized its buffer as points x 3 x -1 bytes, "
+     "a Draco attribute's accessor of componentType 5127: tinygltf sized its buffer as points x 3 x -1 "
+     "bytes, "
      "a 4 GB allocation"},
+    {"gltf/fuzz_control_character.glb",
+     {},
+     ErrorCode::Malformed,
+     "a Draco attribute named 'TEPCOORD\\x7f0' was quoted as it is in the message: a control character"},
     {"gltf/fuzz_number_overflow.gltf",
      {},
      ErrorCode::Malformed,
@@ -64,6 +70,13 @@ TEST_P(FuzzFinding, ReadsAsItShouldAndRoundTrips) {
   if (!f.vertices) {
     ASSERT_FALSE(read.ok()) << f.what;
     EXPECT_EQ(read.error().code, f.code) << read.error().to_string();
+    // One short line of UTF-8, as every message (fuzz/checks.hpp).
+    const std::string& message = read.error().message;
+    EXPECT_LT(message.size(), 512U);
+    EXPECT_TRUE(is_valid_utf8(message)) << message;
+    EXPECT_TRUE(std::ranges::none_of(message, [](char c) {
+      return static_cast<unsigned char>(c) < 0x20 || c == 0x7f;
+    })) << message;
     return;
   }
   ASSERT_TRUE(read.ok()) << f.what << ": " << read.error().to_string();

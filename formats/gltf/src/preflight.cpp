@@ -264,10 +264,10 @@ private:
     const json* attributes = member(&primitive, "attributes");
     for (const auto& [name, id] : ids->items()) {
       if (!unsigned_of(&id) || id.get<std::uint64_t>() > std::numeric_limits<int>::max())
-        return malformed(fmt::format("the id of {} is not a Draco attribute id", name));
+        return malformed(fmt::format("the id of {} is not a Draco attribute id", excerpt(name)));
       std::string what = where;
       what += " attribute ";
-      what += name;
+      what += excerpt(name);
       if (Result<const json*> a = accessor(member(attributes, name.c_str()), what); !a)
         return std::move(a).error();
     }
@@ -297,7 +297,8 @@ private:
       const auto found =
           std::ranges::find(decoded->attributes, id.get<int>(), &draco::detail::Attribute::unique_id);
       if (found == decoded->attributes.end())
-        return malformed(fmt::format("the Draco data has no attribute {} (for {})", id.get<int>(), name));
+        return malformed(
+            fmt::format("the Draco data has no attribute {} (for {})", id.get<int>(), excerpt(name)));
       // tinygltf sizes the decoded buffer by the accessor's componentType: an unknown one counts -1 bytes,
       // and points x components x -1 asked for 4 GB (found by gltf_fuzz).
       const std::optional<std::uint64_t> component =
@@ -309,10 +310,10 @@ private:
       const int expected = type && type->is_string() ? components_of(type->get<std::string>()) : 0;
       // tinygltf copies each value into a 4-element array.
       if (found->components > 4)
-        return malformed(fmt::format("{} has {} components in the Draco data, at most 4 are allowed", name,
-                                     found->components));
+        return malformed(fmt::format("{} has {} components in the Draco data, at most 4 are allowed",
+                                     excerpt(name), found->components));
       if (found->components != expected)
-        return malformed(fmt::format("{} has {} components in the Draco data, its accessor {}", name,
+        return malformed(fmt::format("{} has {} components in the Draco data, its accessor {}", excerpt(name),
                                      found->components, expected));
     }
     return std::nullopt;
