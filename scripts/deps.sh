@@ -6,7 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev libdraco-dev draco
   libtinyobjloader-dev libfast-float-dev libstb-dev nlohmann-json3-dev libnanoflann-dev
-  libmeshoptimizer-dev zlib1g-dev libzstd-dev
+  libmeshoptimizer-dev zlib1g-dev libzstd-dev libutfcpp-dev
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
 )
 # The tests also run the Khronos glTF validator on node (from Debian unless node is already there).

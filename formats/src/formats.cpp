@@ -205,7 +205,7 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
                     "(`pdeface encode SCAN -o FILE.pdef`)",
                     fi.extensions.front()),
         source);
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   if (mesh.is_point_cloud() && !fi.point_clouds)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("{} cannot hold a point cloud (the mesh has no triangles)", fi.name),

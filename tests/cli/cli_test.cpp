@@ -393,18 +393,28 @@ TEST_F(Cli, CompareBatchReportsABadScanAndCompletesTheOthers) {
   ASSERT_EQ(run({"sample", "--seed", "3", path("scans/b.obj")}).exit_code, 0);
   std::ofstream(work_ / "scans" / "broken.ply") << "ply\nformat ascii 1.0\nelement vertex 3\n";
   std::ofstream(work_ / "scans" / "notes.txt") << "not a scan\n";
+  // A hostile one (issue 22): 100 random vertices a kilometre apart, which ran detection for minutes.
+  std::ofstream soup(work_ / "scans" / "soup.obj");
+  for (int i = 0; i < 100; ++i)
+    soup << "v " << (i * 7919 % 1000) * 1000.0 << " " << (i * 104729 % 1000) * 1000.0 << " " << i * 9973.0
+         << "\n";
+  for (int i = 0; i < 300; ++i)
+    soup << "f " << i % 100 + 1 << " " << (i * 37 + 11) % 100 + 1 << " " << (i * 53 + 29) % 100 + 1 << "\n";
+  soup.close();
   const Outcome r = run({"compare", path("scans"), "--out", path("rep"), "--draco-bits", "11", "--budgets",
                          "2048", "--ratios", "0.1", "--lossy-only", "--decimate-bits", "10,11,12"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("error: " + path("scans/broken.ply")), std::string::npos) << r.err;
-  EXPECT_NE(r.out.find("3 scans (1 failed)"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("error: " + path("scans/soup.obj")), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("4 scans (2 failed)"), std::string::npos) << r.out;
   const std::string md = slurp(work_ / "rep" / "report.md");
   EXPECT_NE(md.find("## broken.ply: failed"), std::string::npos) << md;
   EXPECT_NE(md.find("## a.ply: "), std::string::npos) << md;
   EXPECT_NE(md.find("## b.obj: "), std::string::npos) << md;
   EXPECT_EQ(md.find("notes.txt"), std::string::npos) << md;
   const std::string csv = slurp(work_ / "rep" / "report.csv");
-  EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1) + 1U) << csv; // 2 scans x rows, the failed scan's line
+  EXPECT_NE(md.find("## soup.obj: failed"), std::string::npos) << md;
+  EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1) + 2U) << csv; // 2 scans x rows, the failed scans' lines
 
   EXPECT_EQ(run({"compare", "--ratios", "0.8"}).exit_code, 2);
   EXPECT_EQ(run({"compare", path("absent.ply")}).exit_code, 2);

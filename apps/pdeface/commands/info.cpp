@@ -191,7 +191,8 @@ int run_info(const InfoRequest& request) {
     print_text(file, *loaded, summary);
     if (pdef) print_text(*pdef);
   }
-  if (request.json) fmt::print("{}\n", all.dump(2));
+  // File names may be any bytes: invalid UTF-8 is written as U+FFFD, never an exception.
+  if (request.json) fmt::print("{}\n", all.dump(2, ' ', false, nlohmann::json::error_handler_t::replace));
   return status;
 }
 

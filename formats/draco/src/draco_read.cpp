@@ -1,4 +1,5 @@
 #include "bitstream.hpp"
+#include "pdeface/core/text.hpp"
 #include "pdeface/draco/detail.hpp"
 #include "pdeface/draco/draco.hpp"
 
@@ -46,13 +47,18 @@ class Converter {
 public:
   Converter(const ::draco::PointCloud& pc, std::string_view source) : pc_(pc), source_(source) {}
 
-  // Every attribute's point map, not only those we read: glTF refers to any attribute by unique id, and
-  // tinygltf reads them unchecked.
+  // Every attribute's data type and point map, not only those we read: glTF refers to any attribute by
+  // unique id, and tinygltf reads them unchecked.
   [[nodiscard]] std::optional<Error> check_point_maps() const {
     const std::size_t points = pc_.num_points();
     for (int i = 0; i < pc_.num_attributes(); ++i) {
       const ::draco::PointAttribute& a = *pc_.attribute(i);
       const std::string_view what = attribute_name(a.attribute_type());
+      // Numbers only: libdraco converts a BOOL attribute's bytes by loading them as bools (undefined for
+      // any byte but 0 and 1), and has no conversion for the invalid types.
+      if (a.data_type() < ::draco::DT_INT8 || a.data_type() > ::draco::DT_FLOAT64)
+        return error(ErrorCode::Malformed, fmt::format("the {} attribute's data type {} is not a number type",
+                                                       what, static_cast<int>(a.data_type())));
       if (!a.is_mapping_identity() && a.indices_map_size() < points)
         return error(ErrorCode::Malformed, fmt::format("the {} point map has {} entries for {} points", what,
                                                        a.indices_map_size(), points));
@@ -171,7 +177,7 @@ void read_units(const ::draco::PointCloud& pc, Mesh& mesh, Notes* notes) {
   if (const std::optional<Units> units = units_from_string(text)) {
     mesh.units = *units;
   } else if (notes) {
-    notes->push_back(fmt::format("unknown units \"{}\" in the Draco metadata ignored", text));
+    notes->push_back(fmt::format("unknown units \"{}\" in the Draco metadata ignored", excerpt(text)));
   }
 }
 
@@ -209,12 +215,12 @@ Result<detail::Decoded> convert(const ::draco::PointCloud& pc, const ::draco::Me
 namespace detail {
 
 std::string message_text(std::string message) {
-  constexpr std::size_t kMax = 300;
-  if (message.size() > kMax) message = message.substr(0, kMax) + "...";
-  while (!message.empty() && (message.back() == '\n' || message.back() == '.' || message.back() == ' '))
+  constexpr std::size_t kMax = 200;
+  std::ranges::replace(message, '\n', ' '); // tinygltf joins its errors with newlines
+  while (!message.empty() && (message.back() == '.' || message.back() == ' '))
     message.pop_back();
   if (!message.empty()) message[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(message[0])));
-  return message;
+  return excerpt(message, kMax);
 }
 
 Result<Decoded> decode(std::string_view bytes, std::string_view source, std::optional<std::uint64_t> base,

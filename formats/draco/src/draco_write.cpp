@@ -11,6 +11,8 @@
 #include <cmath>
 #include <limits>
 #include <new>
+#include <optional>
+#include <span>
 
 namespace pdeface::draco {
 namespace {
@@ -135,6 +137,28 @@ std::optional<std::string> dropped_vertices_note(const Mesh& mesh, const WriteOp
                      unused, unused == 1 ? "vertex" : "vertices");
 }
 
+// libdraco quantises positions and texture coordinates over their range, computed in float: a range wider
+// than the largest float (coordinates from -3e38 to 3e38) is infinite, and its encoder then crashes. What
+// the writer hands libdraco is checked first.
+template <class Vector>
+std::optional<Error> check_span(std::span<const Vector> values, std::string_view what, const Mesh& mesh) {
+  constexpr std::string_view kAxes = "xyzw";
+  for (int k = 0; k < static_cast<int>(Vector::RowsAtCompileTime); ++k) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (const Vector& v : values) {
+      lo = std::min(lo, static_cast<float>(v[k]));
+      hi = std::max(hi, static_cast<float>(v[k]));
+    }
+    if (values.empty() || std::isfinite(hi - lo)) continue;
+    return make_error(ErrorCode::NonFinite,
+                      fmt::format("the {} span {:.3g} to {:.3g} along {}, a range wider than a float holds: "
+                                  "Draco cannot quantise them",
+                                  what, lo, hi, kAxes[static_cast<std::size_t>(k)]),
+                      mesh.name);
+  }
+  return std::nullopt;
+}
+
 } // namespace
 
 Result<void> check(const WriteOptions& options) {
@@ -158,9 +182,9 @@ namespace detail {
 
 Result<Encoded> encode(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
   if (Result<void> ok = check(options); !ok) return std::move(ok).error();
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
-  if (mesh.positions.empty())
-    return make_error(ErrorCode::Empty, "nothing to encode: the mesh has no vertices", mesh.name);
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
+  if (auto e = check_span<Vec3>(mesh.positions, "positions", mesh)) return std::move(*e);
+  if (auto e = check_span<Vec2f>(mesh.texcoords, "texture coordinates", mesh)) return std::move(*e);
   if (mesh.vertex_count() > std::numeric_limits<std::int32_t>::max())
     return make_error(ErrorCode::CountTooLarge,
                       fmt::format("{} vertices: Draco holds at most 2^31 - 1", mesh.vertex_count()),
@@ -181,6 +205,15 @@ Result<Encoded> encode(const Mesh& mesh, const WriteOptions& options, Notes* not
   } catch (const std::bad_alloc&) {
     return make_error(ErrorCode::CountTooLarge, "not enough memory to encode the mesh with Draco", mesh.name);
   }
+  // What libdraco wrote must decode again: its sequential encoder (level 0) writes a mesh of one triangle as
+  // data its own decoder refuses (found by path_fuzz; draco_decoder refuses it too).
+  if (Result<Decoded> back = decode(out.bytes, mesh.name, std::nullopt, nullptr); !back)
+    return make_error(ErrorCode::Malformed,
+                      fmt::format("libdraco wrote data it cannot decode again ({}){}", back.error().message,
+                                  options.level == 0 && mesh.triangle_count() == 1
+                                      ? ": it cannot hold one triangle at level 0, use a level of 1 to 10"
+                                      : ""),
+                      mesh.name);
   if (notes) {
     notes->push_back(position_error_note(mesh, options.position_bits));
     if (std::optional<std::string> note = dropped_vertices_note(mesh, options)) notes->push_back(*note);

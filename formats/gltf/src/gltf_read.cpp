@@ -4,6 +4,7 @@
 #include "accessors.hpp"
 #include "container.hpp"
 #include "gltf_constants.hpp"
+#include "pdeface/core/text.hpp"
 #include "pdeface/draco/detail.hpp"
 #include "pdeface/gltf/gltf.hpp"
 #include "preflight.hpp"
@@ -25,6 +26,7 @@ using Matrix = Eigen::Matrix4d;
 // Nodes may place one mesh many times: the vertices and triangles of repeated placements are bounded by
 // the size of the file, so a few bytes of JSON cannot make us build gigabytes.
 constexpr std::size_t kMaxInstancedPerByte = 16;
+constexpr std::size_t kMaxNotes = 32;
 
 // One primitive's vertices and faces, in world space.
 struct Piece {
@@ -47,11 +49,16 @@ Result<tinygltf::Model> load(const Container& c, std::string_view source, Notes*
   loader.SetImageLoader(&skip_image, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  const bool ok = c.glb ? loader.LoadBinaryFromMemory(&model, &err, &warn,
-                                                      reinterpret_cast<const unsigned char*>(c.bytes.data()),
-                                                      static_cast<unsigned>(c.bytes.size()))
-                        : loader.LoadASCIIFromString(&model, &err, &warn, c.json.data(),
-                                                     static_cast<unsigned>(c.json.size()), "");
+  bool ok = false;
+  try { // our preflight has checked what tinygltf takes on trust; anything it throws is still bad data
+    ok = c.glb ? loader.LoadBinaryFromMemory(&model, &err, &warn,
+                                             reinterpret_cast<const unsigned char*>(c.bytes.data()),
+                                             static_cast<unsigned>(c.bytes.size()))
+               : loader.LoadASCIIFromString(&model, &err, &warn, c.json.data(),
+                                            static_cast<unsigned>(c.json.size()), "");
+  } catch (const std::exception& e) {
+    err = e.what();
+  }
   if (!ok)
     return make_error(ErrorCode::Malformed, "tinygltf: " + draco::detail::message_text(err),
                       std::string(source));
@@ -96,8 +103,12 @@ private:
   [[nodiscard]] Error error(ErrorCode code, std::string message) const {
     return make_error(code, std::move(message), std::string(source_));
   }
+  // Each distinct note once; past kMaxNotes of them, one saying so (a file naming a thousand attributes
+  // should not give a thousand notes).
   void note(std::string text) {
-    if (notes_ && noted_.insert(text).second) notes_->push_back(fmt::format("{}: {}", source_, text));
+    if (!notes_ || !noted_.insert(text).second || noted_.size() > kMaxNotes + 1) return;
+    notes_->push_back(noted_.size() > kMaxNotes ? fmt::format("{}: more notes not shown", source_)
+                                                : fmt::format("{}: {}", source_, text));
   }
 
   // The default scene, else scene 0, else every root node; a file with meshes but no nodes at all has
@@ -273,7 +284,8 @@ private:
       return error(ErrorCode::Malformed, fmt::format("{}: unknown mode {}", where, p.mode));
     for (const auto& [name, accessor] : p.attributes)
       if (name != "POSITION" && name != "NORMAL" && name != "COLOR_0" && name != "TEXCOORD_0")
-        note(fmt::format("attribute {} dropped: we read POSITION, NORMAL, COLOR_0 and TEXCOORD_0", name));
+        note(fmt::format("attribute {} dropped: we read POSITION, NORMAL, COLOR_0 and TEXCOORD_0",
+                         excerpt(name)));
     Result<Arrays> a = arrays(p, where);
     if (!a) return std::move(a).error();
     if (instance) {
@@ -378,6 +390,7 @@ private:
     if (names_.size() == 1) mesh.name = *names_.begin();
     read_units(mesh);
     if (Result<void> valid = validate(mesh, source_); !valid) return std::move(valid).error();
+    if (mesh.positions.empty()) return error(ErrorCode::Empty, "the scene's primitives hold no vertices");
     return mesh;
   }
 

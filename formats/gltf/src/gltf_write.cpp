@@ -1,6 +1,8 @@
 // glTF writer: a tinygltf model of one mesh, one primitive, one node and one scene, serialised by
 // tinygltf as GLB or as .gltf with the buffer in a data URI.
 #include "gltf_constants.hpp"
+
+#include "pdeface/core/text.hpp"
 #include "pdeface/draco/detail.hpp"
 #include "pdeface/gltf/gltf.hpp"
 
@@ -112,7 +114,7 @@ public:
   // Mesh, node and scene around the primitive; units in asset.extras.
   Result<std::string> finish(tinygltf::Primitive primitive, const Mesh& mesh, bool binary) {
     tinygltf::Mesh m;
-    m.name = mesh.name;
+    m.name = clean_name(mesh.name); // JSON text must be UTF-8 (tinygltf throws on anything else)
     m.primitives.push_back(std::move(primitive));
     model_.meshes.push_back(std::move(m));
     tinygltf::Node node;
@@ -257,9 +259,7 @@ Result<tinygltf::Primitive> draco_primitive(ModelBuilder& b, const Mesh& mesh,
 Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
   if (options.draco)
     if (Result<void> ok = draco::check(*options.draco); !ok) return std::move(ok).error();
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
-  if (mesh.positions.empty())
-    return make_error(ErrorCode::Empty, "nothing to write: the mesh has no vertices", mesh.name);
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
 
   Mesh out = mesh;
   if (!mesh.is_point_cloud() || mesh.has_normals()) out.normals = unit_normals(mesh, notes);

@@ -1,5 +1,7 @@
 #include "preflight.hpp"
 
+#include "pdeface/core/text.hpp"
+
 #include "gltf_constants.hpp"
 #include "pdeface/draco/detail.hpp"
 
@@ -46,7 +48,8 @@ std::string parse_error_text(const json::parse_error& e) {
   const std::string_view what = e.what();
   const std::size_t column = what.find("column ");
   const std::size_t colon = what.find(": ", column == std::string_view::npos ? 0 : column);
-  return std::string(colon == std::string_view::npos ? what : what.substr(colon + 2));
+  return excerpt(colon == std::string_view::npos ? what : what.substr(colon + 2),
+                 200); // nlohmann quotes the token
 }
 
 const json* member(const json* object, const char* key) {
@@ -64,11 +67,6 @@ const json& array_of(const json& doc, const char* key) {
   static const json empty = json::array();
   const json* a = member(&doc, key);
   return a && a->is_array() ? *a : empty;
-}
-
-std::string shorten(std::string_view text) {
-  constexpr std::size_t kMax = 60;
-  return text.size() <= kMax ? std::string(text) : std::string(text.substr(0, kMax)) + "...";
 }
 
 // The bytes tinygltf's base64 decoder makes of a data URI: it stops at the first '=' or other character
@@ -116,7 +114,7 @@ private:
     if (!v || !v->is_string()) return error(ErrorCode::Malformed, "asset.version is missing");
     const std::string text = v->get<std::string>();
     if (!text.starts_with("2."))
-      return error(ErrorCode::UnsupportedVersion, fmt::format("glTF {}: we read glTF 2.0", shorten(text)));
+      return error(ErrorCode::UnsupportedVersion, fmt::format("glTF {}: we read glTF 2.0", excerpt(text)));
     return std::nullopt;
   }
 
@@ -131,7 +129,7 @@ private:
           std::ranges::any_of(kLooks, [&](std::string_view prefix) { return name.starts_with(prefix); }))
         continue;
       return error(ErrorCode::UnsupportedFormat,
-                   fmt::format("the file requires the extension {}, which we do not read", shorten(name)));
+                   fmt::format("the file requires the extension {}, which we do not read", excerpt(name)));
     }
     return std::nullopt;
   }
@@ -159,7 +157,7 @@ private:
                           i));
         return error(
             ErrorCode::UnsupportedFormat,
-            fmt::format("external buffer '{}' not supported: use .glb or embedded data URIs", shorten(text)));
+            fmt::format("external buffer '{}' not supported: use .glb or embedded data URIs", excerpt(text)));
       }
       if (!c_.glb || i != 0)
         return error(
@@ -266,10 +264,10 @@ private:
     const json* attributes = member(&primitive, "attributes");
     for (const auto& [name, id] : ids->items()) {
       if (!unsigned_of(&id) || id.get<std::uint64_t>() > std::numeric_limits<int>::max())
-        return malformed(fmt::format("the id of {} is not a Draco attribute id", name));
+        return malformed(fmt::format("the id of {} is not a Draco attribute id", excerpt(name)));
       std::string what = where;
       what += " attribute ";
-      what += name;
+      what += excerpt(name);
       if (Result<const json*> a = accessor(member(attributes, name.c_str()), what); !a)
         return std::move(a).error();
     }
@@ -299,15 +297,23 @@ private:
       const auto found =
           std::ranges::find(decoded->attributes, id.get<int>(), &draco::detail::Attribute::unique_id);
       if (found == decoded->attributes.end())
-        return malformed(fmt::format("the Draco data has no attribute {} (for {})", id.get<int>(), name));
+        return malformed(
+            fmt::format("the Draco data has no attribute {} (for {})", id.get<int>(), excerpt(name)));
+      // tinygltf sizes the decoded buffer by the accessor's componentType: an unknown one counts -1 bytes,
+      // and points x components x -1 asked for 4 GB (found by gltf_fuzz).
+      const std::optional<std::uint64_t> component =
+          unsigned_of(member(*accessor(member(attributes, name.c_str()), name), "componentType"));
+      if (component != 5120u && component != 5121u && component != 5122u && component != 5123u &&
+          component != 5125u && component != 5126u)
+        return malformed(fmt::format("{}'s accessor has no glTF componentType", excerpt(name)));
       const json* type = member(*accessor(member(attributes, name.c_str()), name), "type");
       const int expected = type && type->is_string() ? components_of(type->get<std::string>()) : 0;
       // tinygltf copies each value into a 4-element array.
       if (found->components > 4)
-        return malformed(fmt::format("{} has {} components in the Draco data, at most 4 are allowed", name,
-                                     found->components));
+        return malformed(fmt::format("{} has {} components in the Draco data, at most 4 are allowed",
+                                     excerpt(name), found->components));
       if (found->components != expected)
-        return malformed(fmt::format("{} has {} components in the Draco data, its accessor {}", name,
+        return malformed(fmt::format("{} has {} components in the Draco data, its accessor {}", excerpt(name),
                                      found->components, expected));
     }
     return std::nullopt;
@@ -337,6 +343,11 @@ Result<Preflight> preflight(const Container& container, std::string_view source)
     // nlohmann counts the bytes read, the failing one included.
     return error(ErrorCode::Malformed, "invalid JSON: " + parse_error_text(e),
                  container.json_location(e.byte == 0 ? 0 : e.byte - 1));
+  } catch (const json::exception& e) { // out_of_range.406: a number beyond a double ("1e526")
+    const std::string_view what = e.what();
+    return error(ErrorCode::Malformed,
+                 "invalid JSON: " + excerpt(what.substr(std::min(what.size(), what.find("] ") + 2)), 200),
+                 Location{});
   }
   if (!doc.is_object())
     return error(ErrorCode::Malformed, "the glTF JSON is not an object", container.json_location(0));

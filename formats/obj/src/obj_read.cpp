@@ -2,14 +2,15 @@
 // "nan", "1.5.5" or a missing coordinate as a number without complaint, passes relative indices that reach
 // before the first vertex, fails on a comment after a face, and counts a face's corners in an unsigned
 // char (third_party_notes/tinyobjloader.md). The validator checks every statement we read and gives its
-// line and column; tinyobjloader then does the parsing.
+// line and column, and keeps every value it parsed (exactly, with fast_float: tinyobjloader reads "0e801"
+// as a NaN); tinyobjloader then reads the faces.
 
 #include "pdeface/obj/obj.hpp"
 
+#include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
@@ -25,19 +26,25 @@ namespace {
 using text::Scanner;
 using text::Token;
 
-constexpr std::size_t kMaxCorners = 255; // tinyobjloader stores a face's corner count in an unsigned char
+constexpr std::size_t kMaxIgnoredNamed = 8; // kinds of statement a note names
+constexpr std::size_t kMaxCorners = 255;    // tinyobjloader stores a face's corner count in an unsigned char
 
 enum Kind { Vertex, Texcoord, Normal };
 constexpr std::array<std::string_view, 3> kKindNames{"vertex", "texture coordinate", "normal"};
 
+constexpr std::array<float, 3> kWhite{1.0F, 1.0F, 1.0F}; // a vertex without r g b, as tinyobjloader has it
+
 // What the validator learnt about the document.
 struct Survey {
+  // The values of the v (x y z, and r g b), vt (u v) and vn (x y z) statements, in order.
+  std::vector<float> positions, colors, texcoords, normals;
   std::array<std::int64_t, 3> counts{}; // v, vt, vn statements
   std::size_t colored = 0;              // v statements with r g b
   std::size_t short_faces = 0;          // faces with fewer than 3 corners (tinyobjloader skips them)
   Units units = Units::Unknown;
-  std::string name; // of the first 'o'
-  std::vector<std::string> ignored;
+  std::string name;                 // of the first 'o'
+  std::vector<std::string> ignored; // the first kMaxIgnoredNamed kinds of statement not read
+  std::size_t more_ignored = 0;     // statements of other kinds not read
 };
 
 class Validator {
@@ -100,8 +107,12 @@ private:
     }
     const bool known =
         word.empty() || word == "o" || word == "g" || word == "s" || word == "usemtl" || word == "mtllib";
-    if (!known && std::ranges::find(survey_.ignored, word) == survey_.ignored.end())
-      survey_.ignored.emplace_back(word);
+    if (!known && std::ranges::find(survey_.ignored, word) == survey_.ignored.end()) {
+      if (survey_.ignored.size() < kMaxIgnoredNamed)
+        survey_.ignored.emplace_back(word);
+      else
+        ++survey_.more_ignored;
+    }
     return {};
   }
 
@@ -111,17 +122,21 @@ private:
   }
 
   // The numbers after `keyword` up to the end of the line: between `least` and `most` of them, each finite
-  // and within float range (tinyobjloader stores floats).
+  // and within float range; kept in the survey as floats (what tinyobjloader would store, but parsed
+  // exactly: its own parser reads "0e801" as 0 x inf, a NaN).
   Result<std::size_t> numbers(Scanner& scan, const Token& keyword, std::size_t least, std::size_t most,
                               int kind) {
     std::size_t count = 0;
+    std::array<float, 6> values{};
     for (Token t = scan.next_on_line(); !t.empty(); t = scan.next_on_line(), ++count) {
       const std::optional<double> v = text::parse_double(t.text);
       if (!v)
         return fail(ErrorCode::Malformed, t.location(),
-                    fmt::format("expected a number after {}, found '{}'", keyword.text, t.text));
+                    fmt::format("expected a number after {}, found '{}'", keyword.text, excerpt(t.text)));
       if (!std::isfinite(*v) || std::abs(*v) > FLT_MAX)
-        return fail(ErrorCode::NonFinite, t.location(), fmt::format("{} is not a finite float", t.text));
+        return fail(ErrorCode::NonFinite, t.location(),
+                    fmt::format("{} is not a finite float", excerpt(t.text)));
+      if (count < values.size()) values[count] = static_cast<float>(*v);
     }
     if (count < least || count > most)
       return fail(ErrorCode::Malformed, keyword.location(),
@@ -129,6 +144,14 @@ private:
                       ? fmt::format("{} needs {} numbers, found {}", keyword.text, least, count)
                       : fmt::format("{} needs {} to {} numbers, found {}", keyword.text, least, most, count));
     ++survey_.counts[kind];
+    std::vector<float>& out = kind == Vertex   ? survey_.positions
+                              : kind == Normal ? survey_.normals
+                                               : survey_.texcoords;
+    const std::size_t width = kind == Texcoord ? 2 : 3; // u v (v = 0 when absent), or x y z
+    out.insert(out.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(width));
+    if (kind == Vertex) // r g b, or white
+      survey_.colors.insert(survey_.colors.end(), count == 6 ? values.begin() + 3 : kWhite.begin(),
+                            count == 6 ? values.end() : kWhite.end());
     return count;
   }
 
@@ -184,7 +207,7 @@ private:
 
   Error bad_corner(const Token& t) const {
     return fail(ErrorCode::Malformed, t.location(),
-                fmt::format("expected v, v/vt, v//vn or v/vt/vn, found '{}'", t.text));
+                fmt::format("expected v, v/vt, v//vn or v/vt/vn, found '{}'", excerpt(t.text)));
   }
 
   std::string& text_;
@@ -253,6 +276,11 @@ private:
 
 Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
   std::string text(bytes);
+  // tinyobjloader's blanks are space and tab, and it ends a line at CR: the other blanks the validator
+  // knows (CR, VT, FF) become spaces, so that both read the same statements ("v\v1 0 0" is no vertex to
+  // tinyobjloader). Lines and columns do not move.
+  std::ranges::replace_if(
+      text, [](char c) { return c == '\r' || c == '\v' || c == '\f'; }, ' ');
   Result<Survey> survey = Validator(text, source).run();
   if (!survey) return std::move(survey).error();
   if (survey->counts[Vertex] == 0)
@@ -265,20 +293,29 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (!reader.ParseFromString(text, /*mtl_text=*/"", config)) { // materials: never opened
     std::string message = reader.Error();
     std::ranges::replace(message, '\n', ' ');
-    return make_error(ErrorCode::Malformed, fmt::format("tinyobjloader: {}", message), std::string(source));
+    return make_error(ErrorCode::Malformed, fmt::format("tinyobjloader: {}", excerpt(message, 200)),
+                      std::string(source));
   }
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
-  const std::size_t vertices = attrib.vertices.size() / 3;
+  const std::size_t vertices = survey->positions.size() / 3;
+  // tinyobjloader gives the faces; the values are the validator's, read exactly. Both saw the same v, vt
+  // and vn statements, so the faces' indices refer to them.
+  if (attrib.vertices.size() != survey->positions.size() || attrib.normals.size() != survey->normals.size() ||
+      attrib.texcoords.size() != survey->texcoords.size())
+    return make_error(ErrorCode::Malformed,
+                      fmt::format("tinyobjloader read {} vertices where the file has {}",
+                                  attrib.vertices.size() / 3, vertices),
+                      std::string(source));
+  const std::vector<float>& xyz = survey->positions;
   Mesh mesh;
   mesh.name = survey->name;
   mesh.units = survey->units;
   mesh.positions.reserve(vertices);
   for (std::size_t i = 0; i < vertices; ++i)
-    mesh.positions.emplace_back(attrib.vertices[3 * i], attrib.vertices[3 * i + 1],
-                                attrib.vertices[3 * i + 2]);
+    mesh.positions.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
 
-  CornerAttribute normals(attrib.normals, 3, vertices);
-  CornerAttribute texcoords(attrib.texcoords, 2, vertices);
+  CornerAttribute normals(survey->normals, 3, vertices);
+  CornerAttribute texcoords(survey->texcoords, 2, vertices);
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     std::size_t first = 0;
     for (const unsigned char corners : shape.mesh.num_face_vertices) {
@@ -314,7 +351,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
       mesh.texcoords.emplace_back(texcoords.at(i, 0), texcoords.at(i, 1));
   if (survey->colored == vertices) {
     for (std::size_t i = 0; i < vertices; ++i)
-      mesh.colors.emplace_back(attrib.colors[3 * i], attrib.colors[3 * i + 1], attrib.colors[3 * i + 2],
+      mesh.colors.emplace_back(survey->colors[3 * i], survey->colors[3 * i + 1], survey->colors[3 * i + 2],
                                1.0f);
   } else if (survey->colored != 0) {
     note(fmt::format("vertex colours dropped: only {} of {} vertices have them", survey->colored, vertices));
@@ -322,7 +359,9 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (survey->short_faces != 0)
     note(fmt::format("{} faces with fewer than 3 corners skipped", survey->short_faces));
   if (!survey->ignored.empty())
-    note(fmt::format("statements not read: {}", fmt::join(survey->ignored, ", ")));
+    note(fmt::format(
+        "statements not read: {}{}", excerpt_list(survey->ignored),
+        survey->more_ignored == 0 ? "" : fmt::format(" and {} more statements", survey->more_ignored)));
   if (Result<void> valid = validate(mesh, source); !valid) return std::move(valid).error();
   return mesh;
 }

@@ -1,5 +1,7 @@
 #include "pdeface/obj/obj.hpp"
 
+#include "pdeface/core/text.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -57,7 +59,7 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
   if (options.precision < 1 || options.precision > 17)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("OBJ precision {} is outside 1..17 significant digits", options.precision));
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   if (notes && std::ranges::any_of(mesh.colors, [](const Vec4f& c) { return c[3] < 1.0f; }))
     notes->push_back("vertex colour alpha dropped: OBJ stores r g b only");
 
@@ -66,7 +68,10 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
   out.append(std::string_view("# written by pdeface\n"));
   if (mesh.units != Units::Unknown)
     fmt::format_to(std::back_inserter(out), "# units {}\n", to_string(mesh.units));
-  if (!mesh.name.empty()) fmt::format_to(std::back_inserter(out), "o {}\n", mesh.name);
+  // One line, without the '#' that would start a comment; UTF-8.
+  std::string name = clean_name(mesh.name);
+  std::ranges::replace(name, '#', ' ');
+  if (!name.empty()) fmt::format_to(std::back_inserter(out), "o {}\n", name);
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     out.push_back('v');
     for (double c : mesh.positions[i])

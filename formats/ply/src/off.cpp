@@ -6,6 +6,7 @@
 #include "pdeface/ply/ply.hpp"
 
 #include "openmesh_io.hpp"
+#include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
@@ -57,7 +58,7 @@ public:
     // OpenMesh reads the first vertex right after the third count: nothing may come between.
     if (const Token extra = scan_.next_on_line(); !extra.empty())
       return fail(ErrorCode::Malformed, extra.location(),
-                  fmt::format("unexpected '{}' after the counts", extra.text));
+                  fmt::format("unexpected '{}' after the counts", excerpt(extra.text)));
     for (std::int64_t i = 0; i < *vertices; ++i)
       if (Result<void> ok = vertex(i, *vertices); !ok) return ok;
     for (std::int64_t i = 0; i < *faces; ++i)
@@ -93,12 +94,12 @@ private:
                   "not an OFF file: expected OFF, COFF, NOFF or CNOFF at the start");
     if (kind != "OFF")
       return fail(ErrorCode::UnsupportedFormat, word.location(),
-                  fmt::format("{} (4D or n-D OFF) is not supported", word.text));
+                  fmt::format("{} (4D or n-D OFF) is not supported", excerpt(word.text)));
     if (const Token next = scan_.next_on_line(); !next.empty())
       return fail(ErrorCode::UnsupportedFormat, next.location(),
                   next.text == "BINARY" ? std::string("binary OFF is not supported")
                                         : fmt::format("'{}' after {}: the counts must be on the next line",
-                                                      next.text, word.text));
+                                                      excerpt(next.text), excerpt(word.text)));
     if (colors) note("COFF vertex colours dropped (OpenMesh reads OFF streams as plain OFF)");
     if (normals) note("NOFF normals dropped (OpenMesh reads OFF streams as plain OFF)");
     return {};
@@ -112,7 +113,7 @@ private:
     const std::optional<std::int64_t> n = text::parse_integer(token.text);
     if (!n || *n < 0)
       return fail(ErrorCode::Malformed, token.location(),
-                  fmt::format("expected the number of {}, found '{}'", what, token.text));
+                  fmt::format("expected the number of {}, found '{}'", what, excerpt(token.text)));
     if (*n > kMaxCount || static_cast<std::uint64_t>(*n) * min_bytes > text_.size())
       return fail(ErrorCode::CountTooLarge, token.location(),
                   fmt::format("{} {} declared, but the whole file has {} bytes", *n, what, text_.size()));
@@ -149,11 +150,12 @@ private:
       if (!t) return std::move(t).error();
       const std::optional<double> v = text::parse_double(t->text);
       if (!v)
-        return fail(ErrorCode::Malformed, t->location(),
-                    fmt::format("expected a number for {} of vertex {}, found '{}'", axis, index, t->text));
+        return fail(
+            ErrorCode::Malformed, t->location(),
+            fmt::format("expected a number for {} of vertex {}, found '{}'", axis, index, excerpt(t->text)));
       if (!std::isfinite(*v) || std::abs(*v) > FLT_MAX)
         return fail(ErrorCode::NonFinite, t->location(),
-                    fmt::format("{} of vertex {} is {}, not a finite float", axis, index, t->text));
+                    fmt::format("{} of vertex {} is {}, not a finite float", axis, index, excerpt(t->text)));
     }
     const std::uint64_t line = scan_.here().line;
     if (blank_rest_of_line() && !noted_vertex_extras_) {
@@ -168,15 +170,17 @@ private:
     if (!size) return std::move(size).error();
     const std::optional<std::int64_t> corners = text::parse_integer(size->text);
     if (!corners || *corners < 0)
-      return fail(ErrorCode::Malformed, size->location(),
-                  fmt::format("expected the number of corners of face {}, found '{}'", index, size->text));
+      return fail(
+          ErrorCode::Malformed, size->location(),
+          fmt::format("expected the number of corners of face {}, found '{}'", index, excerpt(size->text)));
     for (std::int64_t k = 0; k < *corners; ++k) {
       Result<Token> corner = token("face", index, total, "corners");
       if (!corner) return std::move(corner).error();
       const std::optional<std::int64_t> v = text::parse_integer(corner->text);
       if (!v)
-        return fail(ErrorCode::Malformed, corner->location(),
-                    fmt::format("expected a vertex index in face {}, found '{}'", index, corner->text));
+        return fail(
+            ErrorCode::Malformed, corner->location(),
+            fmt::format("expected a vertex index in face {}, found '{}'", index, excerpt(corner->text)));
       if (*v < 0 || *v >= vertices)
         return fail(
             ErrorCode::IndexOutOfRange, corner->location(),
@@ -211,7 +215,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
 }
 
 Result<std::string> write(const Mesh& mesh, Notes* notes) {
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   Result<std::string> bytes =
       ply::detail::write_openmesh(mesh, {.extension = "off", .binary = false}, "OFF", notes);
   if (!bytes || mesh.units == Units::Unknown) return bytes;

@@ -293,7 +293,6 @@ Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::stri
       OpenMesh::IO::Options::VertexNormal | OpenMesh::IO::Options::VertexColor |
       OpenMesh::IO::Options::VertexTexCoord | OpenMesh::IO::Options::ColorAlpha |
       OpenMesh::IO::Options::FaceColor; // only to note that face colours are dropped
-  if (how.binary) options += OpenMesh::IO::Options::Binary;
   std::istringstream in(std::move(bytes));
   const std::optional<std::string> failed = run_openmesh("OpenMesh could not read the data", [&] {
     const bool ok = OpenMesh::IO::IOManager().read(in, std::string(how.extension), importer, options);
@@ -311,6 +310,9 @@ Result<Mesh> read_openmesh(std::string bytes, const OpenMeshRead& how, std::stri
   if (notes && importer.face_colors)
     notes->push_back(fmt::format("{}: face colours dropped: meshes hold vertex colours only", source));
   if (Result<void> valid = validate(importer.mesh, source); !valid) return std::move(valid).error();
+  // An empty mesh is read from no file and written by no writer (`check_writable`).
+  if (importer.mesh.positions.empty())
+    return make_error(ErrorCode::Empty, "no vertices in the file", std::string(source));
   return std::move(importer.mesh);
 }
 

@@ -16,8 +16,7 @@
 namespace pdeface::ply::detail {
 
 struct OpenMeshRead {
-  std::string_view extension; //!< "ply", "off" or "stl": picks OpenMesh's reader
-  bool binary = false;        //!< STL: OpenMesh cannot tell binary from ASCII in a stream
+  std::string_view extension; //!< "ply" or "off": picks OpenMesh's reader (STL is read by stl.cpp itself)
 };
 
 //! Reads validated bytes through OpenMesh into a mesh (polygons fan-triangulated, attributes the file

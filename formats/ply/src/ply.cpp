@@ -21,7 +21,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
 }
 
 Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   const bool alpha = std::ranges::any_of(mesh.colors, [](const Vec4f& c) { return c[3] < 1.0f; });
   Result<std::string> bytes = detail::write_openmesh(mesh,
                                                      {.extension = "ply",

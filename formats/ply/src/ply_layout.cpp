@@ -1,9 +1,9 @@
 #include "ply_layout.hpp"
 
+#include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
-#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <array>
@@ -188,12 +188,12 @@ private:
   Error expected(const Token& token, std::string_view what) const {
     if (token.empty()) return fail(ErrorCode::Malformed, token.location(), fmt::format("expected {}", what));
     return fail(ErrorCode::Malformed, token.location(),
-                fmt::format("expected {}, found '{}'", what, token.text));
+                fmt::format("expected {}, found '{}'", what, excerpt(token.text)));
   }
   Result<void> end_of_line(Scanner& scan) const {
     if (const Token extra = scan.next_on_line(); !extra.empty())
       return fail(ErrorCode::Malformed, extra.location(),
-                  fmt::format("unexpected '{}' at the end of the line", extra.text));
+                  fmt::format("unexpected '{}' at the end of the line", excerpt(extra.text)));
     return {};
   }
 
@@ -210,7 +210,7 @@ private:
     return fail(
         ErrorCode::Malformed, keyword.location(),
         fmt::format("unknown header keyword '{}' (expected format, comment, element, property or end_header)",
-                    keyword.text));
+                    excerpt(keyword.text)));
   }
 
   Result<void> format(Scanner& scan) {
@@ -227,12 +227,12 @@ private:
       return fail(
           ErrorCode::UnsupportedFormat, encoding.location(),
           fmt::format("unknown PLY format '{}' (expected ascii, binary_little_endian or binary_big_endian)",
-                      encoding.text));
+                      excerpt(encoding.text)));
     const Token version = scan.next_on_line();
     if (version.empty()) return expected(version, "the version 1.0");
     if (text::parse_double(version.text) != 1.0)
       return fail(ErrorCode::UnsupportedVersion, version.location(),
-                  fmt::format("PLY version {} is not supported (expected 1.0)", version.text));
+                  fmt::format("PLY version {} is not supported (expected 1.0)", excerpt(version.text)));
     have_format_ = true;
     return end_of_line(scan);
   }
@@ -242,12 +242,13 @@ private:
     if (name.empty()) return expected(name, "an element name");
     const Token count = scan.next_on_line();
     const std::optional<std::int64_t> n = text::parse_integer(count.text);
-    if (!n || *n < 0) return expected(count, fmt::format("the number of '{}' items", name.text));
+    if (!n || *n < 0) return expected(count, fmt::format("the number of '{}' items", excerpt(name.text)));
     if (*n > kMaxCount)
-      return fail(
-          ErrorCode::CountTooLarge, count.location(),
-          fmt::format("element {} declares {} items; at most {} are supported", name.text, *n, kMaxCount));
-    header_.elements.push_back({std::string(name.text), static_cast<std::uint64_t>(*n), {}, line});
+      return fail(ErrorCode::CountTooLarge, count.location(),
+                  fmt::format("element {} declares {} items; at most {} are supported", excerpt(name.text),
+                              *n, kMaxCount));
+    header_.elements.push_back(
+        {std::string(name.text), excerpt(name.text), static_cast<std::uint64_t>(*n), {}, line});
     return end_of_line(scan);
   }
 
@@ -259,7 +260,7 @@ private:
           ErrorCode::Malformed, token.location(),
           fmt::format("unknown property type '{}' (expected char, uchar, short, ushort, int, uint, float, "
                       "double, or int8 ... float64)",
-                      token.text));
+                      excerpt(token.text)));
     return *scalar;
   }
 
@@ -284,6 +285,7 @@ private:
     const Token name = scan.next_on_line();
     if (name.empty()) return expected(name, "a property name");
     property.name = name.text;
+    property.label = excerpt(name.text);
     header_.elements.back().properties.push_back(std::move(property));
     return end_of_line(scan);
   }
@@ -304,15 +306,17 @@ public:
   Result<void> run() {
     Element* vertex = nullptr;
     Element* face = nullptr;
+    std::vector<std::string> ignored;
     for (Element& e : header_.elements) {
       Element** slot = e.name == "vertex" ? &vertex : e.name == "face" ? &face : nullptr;
       if (!slot) {
-        note(fmt::format("element {} ({} items) ignored", e.name, e.count));
+        ignored.push_back(fmt::format("{} ({} items)", e.label, e.count));
         continue;
       }
-      if (*slot) return fail(ErrorCode::Malformed, e.line, fmt::format("a second element {}", e.name));
+      if (*slot) return fail(ErrorCode::Malformed, e.line, fmt::format("a second element {}", e.label));
       *slot = &e;
     }
+    if (!ignored.empty()) note(fmt::format("elements ignored: {}", excerpt_list(ignored)));
     if (!vertex)
       return fail(ErrorCode::Malformed, header_.data_line - 1, "the header declares no vertex element");
     if (Result<void> ok = vertex_roles(*vertex); !ok) return ok;
@@ -330,12 +334,12 @@ private:
   Result<void> color_type(const Property& p) const {
     if (p.type == Scalar::UInt8 || p.type == Scalar::Float32) return {};
     return fail(ErrorCode::UnsupportedFormat, p.line,
-                fmt::format("colour property {} is {}: OpenMesh reads colours only as uchar or float", p.name,
-                            name_of(p.type)));
+                fmt::format("colour property {} is {}: OpenMesh reads colours only as uchar or float",
+                            p.label, name_of(p.type)));
   }
 
   Result<void> vertex_roles(Element& vertex) const {
-    std::vector<std::string_view> ignored;
+    std::vector<std::string> ignored;
     bool doubles = false;
     for (Property& p : vertex.properties) {
       if (p.count_type)
@@ -343,12 +347,12 @@ private:
             ErrorCode::UnsupportedFormat, p.line,
             fmt::format("list property {} in element vertex: OpenMesh reads only the faces' vertex_indices "
                         "lists",
-                        p.name));
+                        p.label));
       if (one_of(p.name, kCoordinateNames)) {
         if (is_integer(p.type))
           return fail(ErrorCode::UnsupportedFormat, p.line,
                       fmt::format("property {} is {}: OpenMesh reads coordinates only as float or double",
-                                  p.name, name_of(p.type)));
+                                  p.label, name_of(p.type)));
         p.role = Role::Coordinate;
         doubles = doubles || p.type == Scalar::Float64;
       } else if (one_of(p.name, kVertexColorNames)) {
@@ -362,33 +366,33 @@ private:
       if (std::ranges::find(vertex.properties, axis, &Property::name) == vertex.properties.end())
         return fail(ErrorCode::Malformed, vertex.line,
                     fmt::format("element vertex has no property {}", axis));
-    if (!ignored.empty()) note(fmt::format("vertex properties ignored: {}", fmt::join(ignored, ", ")));
+    if (!ignored.empty()) note(fmt::format("vertex properties ignored: {}", excerpt_list(ignored)));
     if (doubles) note("double coordinates are read as float32 (OpenMesh's PLY reader)");
     return {};
   }
 
   Result<void> face_roles(Element& face) const {
-    std::vector<std::string_view> ignored;
+    std::vector<std::string> ignored;
     bool indices = false;
     for (Property& p : face.properties) {
       if (p.name == "vertex_indices" || p.name == "vertex_index") {
         if (!p.count_type)
-          return fail(ErrorCode::Malformed, p.line, fmt::format("property {} must be a list", p.name));
+          return fail(ErrorCode::Malformed, p.line, fmt::format("property {} must be a list", p.label));
         const Scalar count = *p.count_type;
         if (count != Scalar::UInt8 && count != Scalar::UInt16 && count != Scalar::Int32)
           return fail(ErrorCode::UnsupportedFormat, p.line,
                       fmt::format("{} lengths of type {}: OpenMesh reads only uchar, ushort or int lengths",
-                                  p.name, name_of(count)));
+                                  p.label, name_of(count)));
         if (!is_integer(p.type))
           return fail(ErrorCode::Malformed, p.line,
-                      fmt::format("{} entries must have an integer type", p.name));
+                      fmt::format("{} entries must have an integer type", p.label));
         p.role = Role::Indices;
         indices = true;
       } else if (p.count_type) {
         return fail(ErrorCode::UnsupportedFormat, p.line,
                     fmt::format("list property {} in element face: OpenMesh misreads lists other than "
                                 "vertex_indices",
-                                p.name));
+                                p.label));
       } else if (one_of(p.name, kFaceColorNames)) {
         if (Result<void> ok = color_type(p); !ok) return ok;
         p.role = Role::Color;
@@ -397,7 +401,7 @@ private:
       }
     }
     if (!indices) return fail(ErrorCode::Malformed, face.line, "element face has no vertex_indices list");
-    if (!ignored.empty()) note(fmt::format("face properties ignored: {}", fmt::join(ignored, ", ")));
+    if (!ignored.empty()) note(fmt::format("face properties ignored: {}", excerpt_list(ignored)));
     return {};
   }
 
@@ -416,7 +420,7 @@ struct Context {
 };
 
 std::string describe(const Context& c) {
-  return fmt::format("property {} of {} {}", c.property.name, c.element.name, c.index);
+  return fmt::format("property {} of {} {}", c.property.label, c.element.label, c.index);
 }
 
 class BinaryValues {
@@ -434,7 +438,7 @@ public:
       return make_error(
           ErrorCode::Truncated,
           fmt::format("the data ends at byte {} inside {} {} of {}, which starts here, before its {}",
-                      bytes_.size(), c.element.name, c.index, c.element.count, c.property.name),
+                      bytes_.size(), c.element.label, c.index, c.element.count, c.property.label),
           std::string(source_), Location::at_byte(record_));
     last_ = pos_;
     pos_ += size;
@@ -469,8 +473,8 @@ public:
     last_ = scan_.next();
     if (last_.empty())
       return make_error(ErrorCode::Truncated,
-                        fmt::format("the data ends inside {} {} of {}, before its {}", c.element.name,
-                                    c.index, c.element.count, c.property.name),
+                        fmt::format("the data ends inside {} {} of {}, before its {}", c.element.label,
+                                    c.index, c.element.count, c.property.label),
                         std::string(source_), scan_.here());
     std::optional<double> value;
     if (is_integer(type)) {
@@ -482,7 +486,7 @@ public:
     if (!value || !in_range(type, *value))
       return make_error(
           ErrorCode::Malformed,
-          fmt::format("expected a {} for {}, found '{}'", name_of(type), describe(c), last_.text),
+          fmt::format("expected a {} for {}, found '{}'", name_of(type), describe(c), excerpt(last_.text)),
           std::string(source_), last_.location());
     return *value;
   }
@@ -510,7 +514,7 @@ Result<void> check_count_fits(const Element& e, Encoding encoding, std::size_t f
       ErrorCode::CountTooLarge,
       fmt::format("element {} declares {} items of at least {} bytes each ({} bytes), but the whole "
                   "file has {} bytes",
-                  e.name, e.count, min_bytes, e.count * min_bytes, file_size),
+                  e.label, e.count, min_bytes, e.count * min_bytes, file_size),
       std::string(source), Location::at_line(e.line));
 }
 

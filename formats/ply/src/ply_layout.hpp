@@ -33,6 +33,7 @@ enum class Role {
 
 struct Property {
   std::string name;
+  std::string label;                //!< the name as messages quote it (`excerpt`)
   Scalar type = Scalar::Float32;    //!< of the value, or of a list's entries
   std::optional<Scalar> count_type; //!< set for list properties
   Role role = Role::Ignored;
@@ -41,6 +42,7 @@ struct Property {
 
 struct Element {
   std::string name;
+  std::string label; //!< the name as messages quote it (`excerpt`)
   std::uint64_t count = 0;
   std::vector<Property> properties;
   std::uint64_t line = 0;

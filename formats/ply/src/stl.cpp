@@ -1,10 +1,14 @@
-// STL through OpenMesh, after a validator: OpenMesh's STL reader cannot tell binary from ASCII in a stream,
-// crashes on a lying facet count, accepts a cut-off file, and reads words and "nan" without complaint
-// (third_party_notes/openmesh.md). It merges coincident corners into shared vertices.
+// STL read by our validator, written through OpenMesh. OpenMesh's STL reader cannot tell binary from ASCII in
+// a stream, crashes on a lying facet count, accepts a cut-off file, reads words and "nan" without complaint
+// (third_party_notes/openmesh.md), and merges corners up to FLT_MIN apart through a comparison that is not
+// an ordering (its set_epsilon changes nothing): corners 5e-39 apart written by its own writer came back
+// merged into degenerate facets (found by fuzzing). The validator reads every corner anyway, so it builds
+// the mesh: equal corners merged into shared vertices, exactly.
 
 #include "pdeface/ply/ply.hpp"
 
 #include "openmesh_io.hpp"
+#include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
@@ -12,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 
 namespace pdeface::stl {
 namespace {
@@ -55,9 +60,35 @@ bool is_binary(std::string_view bytes) {
   return !Scanner(bytes).next().text.starts_with("solid");
 }
 
+// Facets to a mesh: equal corners (as float32; -0 equals 0) become one vertex, numbered in the order corners
+// first appear; a facet two of whose corners are the same point is skipped, and counted.
+class FacetSoup {
+public:
+  void add(const std::array<float, 9>& corners) {
+    std::array<std::uint32_t, 3> v{};
+    for (std::size_t k = 0; k < 3; ++k)
+      v[k] = vertex({corners[3 * k] + 0.0F, corners[3 * k + 1] + 0.0F, corners[3 * k + 2] + 0.0F});
+    if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+      ++skipped;
+    else
+      mesh.triangles.push_back({v[0], v[1], v[2]});
+  }
+
+  Mesh mesh;
+  std::size_t skipped = 0;
+
+private:
+  std::uint32_t vertex(const std::array<float, 3>& p) {
+    const auto [it, fresh] = index_.try_emplace(p, static_cast<std::uint32_t>(mesh.positions.size()));
+    if (fresh) mesh.positions.emplace_back(p[0], p[1], p[2]);
+    return it->second;
+  }
+  std::map<std::array<float, 3>, std::uint32_t> index_; // finite values only: an ordering
+};
+
 struct Checked {
-  std::string_view data; // what OpenMesh reads: the file up to its last facet
   Units units = Units::Unknown;
+  FacetSoup soup;
 };
 
 Result<Checked> check_binary(std::string_view bytes, std::string_view source, Notes* notes) {
@@ -83,17 +114,21 @@ Result<Checked> check_binary(std::string_view bytes, std::string_view source, No
                 fmt::format("the file ends at byte {} inside facet {} of {}, which starts here", bytes.size(),
                             whole, facets));
   }
-  // OpenMesh merges corners through an ordered map: a NaN would break its ordering.
-  for (std::uint64_t f = 0; f < facets; ++f)
-    for (std::size_t k = 3; k < 12; ++k) {
-      const std::size_t at = kPreambleBytes + f * kFacetBytes + 4 * k;
-      if (!std::isfinite(load_float(bytes, at)))
+  Checked checked{units_in(bytes.substr(0, kHeaderBytes)), {}};
+  for (std::uint64_t f = 0; f < facets; ++f) {
+    std::array<float, 9> corners{};
+    for (std::size_t k = 0; k < corners.size(); ++k) { // after the facet's normal (3 floats)
+      const std::size_t at = kPreambleBytes + f * kFacetBytes + 12 + 4 * k;
+      corners[k] = load_float(bytes, at);
+      if (!std::isfinite(corners[k]))
         return fail(ErrorCode::NonFinite, at, fmt::format("facet {} has a non-finite corner coordinate", f));
     }
+    checked.soup.add(corners);
+  }
   if (notes && end < bytes.size())
     notes->push_back(fmt::format("{}: {} bytes after the last facet ignored (from byte {})", source,
                                  bytes.size() - end, end));
-  return Checked{bytes.substr(0, end), units_in(bytes.substr(0, kHeaderBytes))};
+  return checked;
 }
 
 class AsciiChecker {
@@ -104,17 +139,15 @@ public:
   // solid [name]  (facet normal n n n  outer loop  (vertex x y z){3}  endloop  endfacet)*  endsolid [name]
   Result<Checked> run() {
     scan_.next(); // "solid", checked by is_binary
-    Checked checked{{}, units_in(bytes_.substr(0, bytes_.find('\n')))};
+    Checked checked{units_in(bytes_.substr(0, bytes_.find('\n'))), {}};
     scan_.skip_line();
     std::uint64_t facets = 0;
     for (Token t = scan_.next(); t.text != "endsolid"; t = scan_.next(), ++facets) {
       if (t.empty()) return fail(ErrorCode::Truncated, scan_.here(), "the file ends without endsolid");
       if (t.text != "facet") return unexpected(t, "facet or endsolid");
-      if (Result<void> ok = facet(); !ok) return std::move(ok).error();
+      if (Result<void> ok = facet(checked.soup); !ok) return std::move(ok).error();
     }
     if (facets == 0) return make_error(ErrorCode::Empty, "the STL file has no facets", std::string(source_));
-    scan_.skip_line();
-    checked.data = bytes_.substr(0, scan_.offset());
     return checked;
   }
 
@@ -126,36 +159,43 @@ private:
     if (t.empty())
       return fail(ErrorCode::Truncated, scan_.here(),
                   fmt::format("the file ends where {} was expected", expected));
-    return fail(ErrorCode::Malformed, t.location(), fmt::format("expected {}, found '{}'", expected, t.text));
+    return fail(ErrorCode::Malformed, t.location(),
+                fmt::format("expected {}, found '{}'", expected, excerpt(t.text)));
   }
   Result<void> keyword(std::string_view word) {
     const Token t = scan_.next();
     if (t.text == word) return {};
     return unexpected(t, fmt::format("'{}'", word));
   }
-  Result<void> numbers(std::string_view what, bool finite) {
+  // Three numbers into `out` (as float32), finite ones if `finite`.
+  Result<void> numbers(std::string_view what, bool finite, float* out) {
     for (int k = 0; k < 3; ++k) {
       const Token t = scan_.next();
       if (t.empty()) return unexpected(t, what);
-      const std::optional<double> v = text::parse_double(t.text);
+      const std::optional<float> v = text::parse_real<float>(t.text);
       if (!v) return unexpected(t, what);
-      if (finite && !std::isfinite(static_cast<float>(*v)))
+      if (finite && !std::isfinite(*v))
         return fail(ErrorCode::NonFinite, t.location(),
-                    fmt::format("{} is {}, not a finite float", what, t.text));
+                    fmt::format("{} is {}, not a finite float", what, excerpt(t.text)));
+      out[k] = *v;
     }
     return {};
   }
-  Result<void> facet() {
+  Result<void> facet(FacetSoup& soup) {
+    std::array<float, 3> normal{};
+    std::array<float, 9> corners{};
     if (Result<void> ok = keyword("normal"); !ok) return ok;
-    if (Result<void> ok = numbers("a normal component", false); !ok) return ok;
+    if (Result<void> ok = numbers("a normal component", false, normal.data()); !ok) return ok;
     if (Result<void> ok = keyword("outer"); !ok) return ok;
     if (Result<void> ok = keyword("loop"); !ok) return ok;
-    for (int corner = 0; corner < 3; ++corner) {
+    for (std::size_t corner = 0; corner < 3; ++corner) {
       if (Result<void> ok = keyword("vertex"); !ok) return ok;
-      if (Result<void> ok = numbers("a corner coordinate", true); !ok) return ok;
+      if (Result<void> ok = numbers("a corner coordinate", true, &corners[3 * corner]); !ok) return ok;
     }
     if (Result<void> ok = keyword("endloop"); !ok) return ok;
-    return keyword("endfacet");
+    if (Result<void> ok = keyword("endfacet"); !ok) return ok;
+    soup.add(corners);
+    return {};
   }
 
   std::string_view bytes_;
@@ -170,14 +210,17 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   const bool binary = is_binary(bytes);
   Result<Checked> checked = binary ? check_binary(bytes, source, notes) : AsciiChecker(bytes, source).run();
   if (!checked) return std::move(checked).error();
-  Result<Mesh> mesh = ply::detail::read_openmesh(std::string(checked->data),
-                                                 {.extension = "stl", .binary = binary}, source, notes);
-  if (mesh) mesh->units = checked->units;
+  Mesh mesh = std::move(checked->soup.mesh);
+  mesh.units = checked->units;
+  if (notes && checked->soup.skipped > 0)
+    notes->push_back(fmt::format("{}: {} degenerate facets skipped (two corners at the same point)", source,
+                                 checked->soup.skipped));
+  if (Result<void> valid = validate(mesh, source); !valid) return std::move(valid).error();
   return mesh;
 }
 
 Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   if (mesh.is_point_cloud())
     return make_error(ErrorCode::InvalidArgument,
                       "STL cannot hold a point cloud (the mesh has no triangles)");

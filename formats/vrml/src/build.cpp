@@ -1,7 +1,9 @@
 #include "build.hpp"
+#include "pdeface/core/text.hpp"
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -17,6 +19,12 @@ namespace {
 constexpr std::size_t kMaxVertices = std::size_t{1} << 25;
 constexpr std::size_t kMaxCorners = std::size_t{1} << 27; // coordIndex entries, so about as many triangles
 constexpr std::size_t kMaxVisits = std::size_t{1} << 24;  // node instances visited
+// ... and bounded by what the file's size justifies: a vertex takes at least 6 bytes to write ("0 0 0 "), a
+// corner 2 ("0 "), so these allow every one of them to be drawn about 100 times over, and any scene a
+// small file can hold. An 11 KB file of nested USEs could otherwise ask for 33 million vertices (4 GB).
+constexpr std::size_t kFreeElements = std::size_t{1} << 16;
+constexpr std::size_t kVerticesPerByte = 16;
+constexpr std::size_t kCornersPerByte = 64;
 
 //! A per-vertex attribute as a face set gives it: values, an optional index list, and why the values
 //! cannot be per vertex (empty when they can).
@@ -146,11 +154,14 @@ private:
 void Builder::count(const Node& node, std::size_t vertices, std::size_t corners) {
   vertices_ += vertices;
   corners_ += corners;
-  if (vertices_ > kMaxVertices || corners_ > kMaxCorners)
-    context_.fail(
-        ErrorCode::CountTooLarge, node.at,
-        fmt::format("the scene instances more than {} vertices or {} coordIndex entries (through USE)",
-                    kMaxVertices, kMaxCorners));
+  const std::size_t bytes = context_.bytes().size();
+  const std::size_t max_vertices = std::min(kMaxVertices, kFreeElements + kVerticesPerByte * bytes);
+  const std::size_t max_corners = std::min(kMaxCorners, kFreeElements + kCornersPerByte * bytes);
+  if (vertices_ > max_vertices || corners_ > max_corners)
+    context_.fail(ErrorCode::CountTooLarge, node.at,
+                  fmt::format("the scene instances more than {} vertices or {} coordIndex entries (through "
+                              "USE): more than a file of {} bytes justifies",
+                              max_vertices, max_corners, bytes));
 }
 
 void Builder::append_positions(std::span<const Vec3> points, const Eigen::Affine3d& matrix) {
@@ -349,8 +360,8 @@ void visit_v2(Builder& b, const Node& node, const Eigen::Affine3d& matrix, std::
     b.point_set({&geometry, *values_of(p->coord, &Coordinates::points), values_of(p->color, &Colors::values)},
                 matrix);
   } else {
-    b.note(
-        fmt::format("Shape geometry {} ignored (only IndexedFaceSet and PointSet are read)", geometry.type));
+    b.note(fmt::format("Shape geometry {} ignored (only IndexedFaceSet and PointSet are read)",
+                       excerpt(geometry.type)));
   }
 }
 

@@ -1,6 +1,7 @@
 // VRML 2.0 / VRML97 (ISO/IEC 14772-1): the nodes the reader keeps, and the statements it parses past.
 
 #include "parse_v2.hpp"
+#include "pdeface/core/text.hpp"
 
 namespace pdeface::vrml::detail {
 
@@ -20,7 +21,7 @@ NodeData ParserV2::parse_body(const Token& type) {
   if (t == "WorldInfo") return world_info();
   if (t == "Inline") return inline_node(type);
   if (protos_.contains(t))
-    context_.note(type.at, fmt::format("instance of PROTO {} skipped (PROTOs are not expanded)", t));
+    context_.note(type.at, fmt::format("instance of PROTO {} skipped (PROTOs are not expanded)", excerpt(t)));
   skip_body();
   return Skipped{};
 }
@@ -173,8 +174,9 @@ NodeData ParserV2::world_info() {
 NodeData ParserV2::inline_node(const Token& type) {
   std::vector<std::string_view> url;
   only_field("url", [&] { url = read_strings("url"); });
-  context_.note(type.at, fmt::format("Inline {} not followed (the reader does not fetch other files)",
-                                     url.empty() ? std::string("without url") : unescape(url.front())));
+  context_.note(type.at,
+                fmt::format("Inline {} not followed (the reader does not fetch other files)",
+                            url.empty() ? std::string("without url") : excerpt(unescape(url.front()))));
   return Skipped{};
 }
 

@@ -1,5 +1,7 @@
 #include "parser.hpp"
 
+#include "pdeface/core/text.hpp"
+
 #include <array>
 #include <utility>
 
@@ -30,9 +32,9 @@ std::optional<Units> units_named(std::string_view text) {
 std::string describe(const Token& token) {
   switch (token.kind) {
   case TokenKind::End: return "the end of the file";
-  case TokenKind::String: return fmt::format("the string \"{}\"", token.text.substr(0, 40));
+  case TokenKind::String: return fmt::format("the string \"{}\"", excerpt(token.text));
   case TokenKind::BadString: return "an unterminated string";
-  default: return fmt::format("'{}'", token.text.substr(0, 40));
+  default: return fmt::format("'{}'", excerpt(token.text));
   }
 }
 
@@ -131,7 +133,8 @@ NodePtr Parser::node_statement(const Token& first) {
     const auto found = defs_.find(name.text);
     if (found == defs_.end())
       fail(ErrorCode::UndefinedName, name.at,
-           fmt::format("USE {}: no node was defined with DEF {} before this point", name.text, name.text));
+           fmt::format("USE {}: no node was defined with DEF {} before this point", excerpt(name.text),
+                       excerpt(name.text)));
     return found->second;
   }
   return parse_node(first);
@@ -141,7 +144,7 @@ NodePtr Parser::parse_node(const Token& type) {
   if (type.kind != TokenKind::Word) fail_expected("a node type", type);
   const Token open = next_required("'{'");
   if (open.kind != TokenKind::OpenBrace)
-    fail_expected(fmt::format("'{{' after the node type {}", type.text), open);
+    fail_expected(fmt::format("'{{' after the node type {}", excerpt(type.text)), open);
   return std::make_shared<const Node>(Node{type.text, type.at, parse_body(type)});
 }
 

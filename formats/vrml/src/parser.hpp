@@ -13,6 +13,8 @@
 #include "numbers.hpp"
 #include "scene.hpp"
 
+#include "pdeface/core/text.hpp"
+
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
@@ -161,7 +163,7 @@ template <class T> T Parser::number(const Token& t, std::string_view field) cons
   if (t.kind != TokenKind::Word || !parse_float(t.text, value))
     fail_expected(fmt::format("a number for {}", field), t);
   if (!std::isfinite(value))
-    fail(ErrorCode::NonFinite, t.at, fmt::format("{}: '{}' is not a finite number", field, t.text));
+    fail(ErrorCode::NonFinite, t.at, fmt::format("{}: '{}' is not a finite number", field, excerpt(t.text)));
   return value;
 }
 
@@ -211,7 +213,8 @@ template <class Data> NodePtr Parser::read_node_of(std::string_view field, std::
   NodePtr node = read_sfnode();
   if (!node || std::holds_alternative<Data>(node->data)) return node;
   if (protos_.contains(node->type)) return nullptr; // noted where the instance was parsed
-  fail(ErrorCode::Malformed, at, fmt::format("{} must be a {} node, found {}", field, type, node->type));
+  fail(ErrorCode::Malformed, at,
+       fmt::format("{} must be a {} node, found {}", field, type, excerpt(node->type)));
 }
 
 } // namespace pdeface::vrml::detail

@@ -4,6 +4,7 @@
 #include "context.hpp"
 #include "parse_v1.hpp"
 #include "parse_v2.hpp"
+#include "pdeface/core/text.hpp"
 
 #include "pdeface/vrml/vrml.hpp"
 
@@ -47,14 +48,14 @@ Header read_header(std::string_view bytes, const Context& context) {
   const bool v1 = version == "V1.0";
   if (!v1 && version != "V2.0")
     context.fail(ErrorCode::UnsupportedVersion, at(version_at),
-                 version.empty()
-                     ? std::string("the header names no version: expected V1.0 or V2.0")
-                     : fmt::format("VRML version '{}' is not supported: expected V1.0 or V2.0", version));
+                 version.empty() ? std::string("the header names no version: expected V1.0 or V2.0")
+                                 : fmt::format("VRML version '{}' is not supported: expected V1.0 or V2.0",
+                                               excerpt(version)));
   const std::string_view expected = v1 ? "ascii" : "utf8";
   if (encoding != expected)
-    context.fail(
-        ErrorCode::UnsupportedVersion, at(encoding_at),
-        fmt::format("encoding '{}' is not supported for VRML {}: expected {}", encoding, version, expected));
+    context.fail(ErrorCode::UnsupportedVersion, at(encoding_at),
+                 fmt::format("encoding '{}' is not supported for VRML {}: expected {}", excerpt(encoding),
+                             version, expected));
   return {v1 ? Version::V1 : Version::V2, Position{bom, 1, 1}};
 }
 

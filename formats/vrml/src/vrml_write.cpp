@@ -6,6 +6,8 @@
 
 #include "pdeface/vrml/vrml.hpp"
 
+#include "pdeface/core/text.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -80,9 +82,10 @@ void write_node(Text& out, std::string_view field, std::string_view node, std::s
 }
 
 void write_world_info(Text& out, const Mesh& mesh) {
-  if (mesh.name.empty() && mesh.units == Units::Unknown) return;
+  const std::string name = clean_name(mesh.name); // VRML 2.0 text is UTF-8
+  if (name.empty() && mesh.units == Units::Unknown) return;
   out << "WorldInfo {\n";
-  if (!mesh.name.empty()) out.format("  title {}\n", quoted(mesh.name));
+  if (!name.empty()) out.format("  title {}\n", quoted(name));
   // Our reader takes the units back from this entry; VRML itself has no units field.
   if (mesh.units != Units::Unknown) out.format("  info [ \"units: {}\" ]\n", to_string(mesh.units));
   out << "}\n";
@@ -105,7 +108,7 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
   if (options.precision < 1 || options.precision > std::numeric_limits<double>::max_digits10)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("precision must be 1 to 17 significant digits, not {}", options.precision));
-  if (Result<void> valid = validate(mesh, mesh.name); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   if (mesh.positions.empty())
     return make_error(ErrorCode::Empty, "nothing to write: the mesh has no vertices");
   if (mesh.positions.size() > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))

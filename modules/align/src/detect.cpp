@@ -32,6 +32,18 @@ constexpr double kFaceShapeMm = 9.5;       // landmarks this close to the averag
 constexpr double kFaceSymmetryMm = 2.0;    // a central face this symmetric: a face (symmetry cue 1)
 constexpr double kMinEyeHollow = 0.5;      // eye sockets at least this deep (real faces 2.5-7.6 mm, convex
                                            // objects none: a capped cylinder's "eyes" -0.3 mm)
+// Bounds whatever the coordinates (docs/robustness.md). A scan that spans more than this many millimetres
+// (in its units, or in those its size suggests) holds no face we could find: a whole body is 2 m.
+constexpr double kMaxScanMm = 10000.0;
+// Whatever its units, a scan whose size (the bounding box's diagonal) is outside these bounds is no face:
+// within them the search's arithmetic (squared distances, ratios of sizes) stays far from overflowing.
+constexpr double kMinScanSize = 1e-30;
+constexpr double kMaxScanSize = 1e30;
+// A symmetry profile samples each triangle's cut at most this many times, and holds at most this many
+// points: a face's triangles are cut in one or two pieces, a soup of huge triangles must not allocate
+// gigabytes.
+constexpr int kMaxPiecesPerCut = 16;
+constexpr std::size_t kMaxProfilePoints = std::size_t{1} << 22;
 
 double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 
@@ -117,7 +129,10 @@ std::vector<Vec3> profile_of(const Scene& s, const Plane& plane, double slab, do
       if ((h[k] >= 0.0) != (h[j] >= 0.0)) cut[n++] = v[k] + h[k] / (h[k] - h[j]) * (v[j] - v[k]);
     }
     if (n < 2) continue;
-    const int pieces = std::max(1, static_cast<int>(std::ceil((cut[1] - cut[0]).norm() / step)));
+    if (out.size() >= kMaxProfilePoints) break;
+    const double length = (cut[1] - cut[0]).norm() / step; // may be anything: compared as a double
+    const int pieces =
+        length < kMaxPiecesPerCut ? std::max(1, static_cast<int>(std::ceil(length))) : kMaxPiecesPerCut;
     for (int i = 0; i <= pieces; ++i)
       out.push_back(cut[0] + (static_cast<double>(i) / pieces) * (cut[1] - cut[0]));
   }
@@ -589,10 +604,23 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     return make_error(ErrorCode::NoFace,
                       fmt::format("no face found: {} points are too few to hold one", scan.vertex_count()),
                       source);
+  if (const double size = bounding_box(scan).diagonal(); size > kMaxScanSize)
+    return make_error(
+        ErrorCode::NoFace,
+        fmt::format("no face found: the scan spans {:.3g} units, which no face scan does in any "
+                    "unit",
+                    size),
+        source);
   const Scene scene = prepare(scan, options);
-  if (!(scene.size > 0.0) || scene.spacing <= 0.0)
+  if (!(scene.size >= kMinScanSize) || scene.spacing <= 0.0)
     return make_error(ErrorCode::NoFace, "no face found: the points do not span a surface", source);
   const bool fixed_scale = scan.units != Units::Unknown;
+  if (fixed_scale && scene.size * millimetres_per(scan.units) > kMaxScanMm)
+    return make_error(
+        ErrorCode::NoFace,
+        fmt::format("no face found: the scan spans {:.3g} m, more than any face scan ({:.0f} m)",
+                    scene.size * millimetres_per(scan.units) / 1000.0, kMaxScanMm / 1000.0),
+        source);
   const std::optional<double> stated =
       fixed_scale ? std::optional<double>(millimetres_per(scan.units)) : std::nullopt;
   // Stated units: the face at that scale first, then as a child's (0.7 times as large) or a large adult's.
@@ -668,7 +696,8 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
   // local planes around its pointed places (a face turned on its shoulders, a bust); then every candidate
   // scale (a bust, a head, units of no rule). Each stops when a face is found: symmetric, its landmarks
   // on the average face, and (when the scale was a guess) saying the same unit.
-  const double first = fixed_scale ? scales.front() : millimetres_per(detect_units(scene.mesh));
+  double first = fixed_scale ? scales.front() : millimetres_per(detect_units(scene.mesh));
+  if (scene.size * first > kMaxScanMm) first = mid; // units of no rule: the scale its size suggests
   const auto found_a_face = [&] {
     return std::ranges::any_of(quick, [&](const Hypothesis& h) {
       return h.verified.shape_rms < kFaceShapeMm && h.candidate.rms_mm < kFaceSymmetryMm &&

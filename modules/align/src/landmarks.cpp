@@ -1,5 +1,7 @@
 #include "pdeface/align/landmarks.hpp"
 
+#include "pdeface/core/text.hpp"
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -21,7 +23,7 @@ Error json_error(const json::parse_error& e, std::string_view bytes, std::string
   const std::uint64_t offset = e.byte > 0 ? e.byte - 1 : 0;
   std::string what = e.what();
   if (const auto colon = what.rfind(": "); colon != std::string::npos) what = what.substr(colon + 2);
-  return make_error(ErrorCode::Malformed, "invalid JSON: " + what, std::string(source),
+  return make_error(ErrorCode::Malformed, "invalid JSON: " + excerpt(what, 200), std::string(source),
                     Location::in_text(bytes, offset));
 }
 
@@ -102,21 +104,24 @@ Result<Landmarks> from_ours(const json& j, std::string_view source) {
     return fail("expected an object with a \"landmarks\" object (see docs/align.md)");
   if (j.contains("version") && j["version"] != 1)
     return make_error(ErrorCode::UnsupportedVersion,
-                      fmt::format("landmark file version {} (we read 1)", j["version"].dump()),
+                      fmt::format("landmark file version {} (we read 1)", excerpt(j["version"].dump())),
                       std::string(source));
   Landmarks out;
   if (j.contains("units")) {
     const std::optional<Units> units =
         j["units"].is_string() ? units_from_string(j["units"].get<std::string>()) : std::nullopt;
-    if (!units) return fail(fmt::format("unknown units {} (mm, cm, m or in)", j["units"].dump()));
+    if (!units) return fail(fmt::format("unknown units {} (mm, cm, m or in)", excerpt(j["units"].dump())));
     out.units = *units;
   }
   for (const auto& [key, value] : j["landmarks"].items()) {
     const std::optional<Landmark> l = landmark_from_name(key);
-    if (!l) return fail(fmt::format("unknown landmark \"{}\" (known: nose_tip, eye_inner_left, ...)", key));
+    if (!l)
+      return fail(
+          fmt::format("unknown landmark \"{}\" (known: nose_tip, eye_inner_left, ...)", excerpt(key)));
     const std::optional<Vec3> p = to_point(value);
     if (!p)
-      return fail(fmt::format("landmark \"{}\" must be three finite numbers, not {}", key, value.dump()));
+      return fail(fmt::format("landmark \"{}\" must be three finite numbers, not {}", excerpt(key),
+                              excerpt(value.dump())));
     out[*l] = p;
   }
   return out;

@@ -1,5 +1,6 @@
 #include "pdeface/compare/encode.hpp"
 
+#include "pdeface/core/text.hpp"
 #include "pdeface/pdef/mesh.hpp"
 
 namespace pdeface::compare {
@@ -42,7 +43,7 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
   if (!surface) return named(std::move(surface).error());
   EncodeOutcome out{std::move(alignment), *std::move(profiles), {}, {}};
   out.face = to_face(out.profiles, *surface, request.pde);
-  out.face.name = request.name;
+  out.face.name = clean_name(request.name); // a .pdef name is printable UTF-8, at most 1024 bytes
   if (request.store_landmarks)
     for (std::size_t i = 0; i < align::kLandmarkCount; ++i)
       if (const std::optional<Vec3>& p = canonical.landmarks.points[i])

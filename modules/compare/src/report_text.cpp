@@ -382,7 +382,7 @@ std::string report_json(const Report& report) {
     }
     doc["scans"].push_back(std::move(s));
   }
-  return doc.dump(2) + "\n";
+  return doc.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n"; // names: any bytes
 }
 
 } // namespace pdeface::compare

@@ -3,6 +3,17 @@
 #include <algorithm>
 
 namespace pdeface {
+namespace {
+
+// `v` (a cell index or a count of cells, as a double) as an int, clamped to [-1, limit]: coordinates and
+// radii come from files and can be anything; converting a double beyond int's range is undefined, and no
+// loop over cells needs to reach further than the grid.
+int clamped(double v, int limit) {
+  if (!(v > -1.0)) return -1; // NaN too
+  return v >= static_cast<double>(limit) ? limit : static_cast<int>(v);
+}
+
+} // namespace
 
 DepthMap::DepthMap(double x0, double x1, double y0, double y1, double cell)
     : x0_(x0), y0_(y0), cell_(cell),
@@ -20,14 +31,15 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
     // A point cloud: the front-most layer, smoothly. First the front-most depth within the splat radius,
     // then a Gaussian-weighted mean of the points up to 3 mm behind it, so that the map (and landmarks
     // found in it) moves continuously with the frame instead of jumping from point to point.
-    const int reach = static_cast<int>(std::ceil(splat / cell_));
+    // The cells within the splat radius of a point, only those of the grid: a huge radius (a scan at an
+    // absurd scale) costs at most the grid.
     auto for_cells = [&](const Vec3& q, const auto& visit) {
-      const int c0 = static_cast<int>(std::lround((q.x() - x0_) / cell_));
-      const int r0 = static_cast<int>(std::lround((q.y() - y0_) / cell_));
-      for (int dr = -reach; dr <= reach; ++dr)
-        for (int dc = -reach; dc <= reach; ++dc) {
-          const int r = r0 + dr, c = c0 + dc;
-          if (r < 0 || c < 0 || r >= rows() || c >= cols()) continue;
+      const int rlo = std::max(0, clamped(std::ceil((q.y() - splat - y0_) / cell_), rows()));
+      const int rhi = std::min(rows() - 1, clamped(std::floor((q.y() + splat - y0_) / cell_), rows()));
+      const int clo = std::max(0, clamped(std::ceil((q.x() - splat - x0_) / cell_), cols()));
+      const int chi = std::min(cols() - 1, clamped(std::floor((q.x() + splat - x0_) / cell_), cols()));
+      for (int r = rlo; r <= rhi; ++r)
+        for (int c = clo; c <= chi; ++c) {
           const double dx = x_of(c) - q.x(), dy = y_of(r) - q.y();
           if (dx * dx + dy * dy <= splat * splat) visit(r, c, dx * dx + dy * dy);
         }
@@ -54,15 +66,13 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
     const Vec3& b = p[t[1]];
     const Vec3& c = p[t[2]];
     const double area = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
-    if (std::abs(area) < 1e-12) continue; // seen edge-on
-    const int cmin =
-        std::max(0, static_cast<int>(std::ceil((std::min({a.x(), b.x(), c.x()}) - x0_) / cell_)));
+    if (!(std::abs(area) >= 1e-12) || !std::isfinite(area)) continue; // seen edge-on, or beyond a double
+    const int cmin = std::max(0, clamped(std::ceil((std::min({a.x(), b.x(), c.x()}) - x0_) / cell_), cols()));
     const int cmax =
-        std::min(cols() - 1, static_cast<int>(std::floor((std::max({a.x(), b.x(), c.x()}) - x0_) / cell_)));
-    const int rmin =
-        std::max(0, static_cast<int>(std::ceil((std::min({a.y(), b.y(), c.y()}) - y0_) / cell_)));
+        std::min(cols() - 1, clamped(std::floor((std::max({a.x(), b.x(), c.x()}) - x0_) / cell_), cols()));
+    const int rmin = std::max(0, clamped(std::ceil((std::min({a.y(), b.y(), c.y()}) - y0_) / cell_), rows()));
     const int rmax =
-        std::min(rows() - 1, static_cast<int>(std::floor((std::max({a.y(), b.y(), c.y()}) - y0_) / cell_)));
+        std::min(rows() - 1, clamped(std::floor((std::max({a.y(), b.y(), c.y()}) - y0_) / cell_), rows()));
     for (int r = rmin; r <= rmax; ++r) {
       const double y = y_of(r);
       for (int col = cmin; col <= cmax; ++col) {
@@ -125,14 +135,14 @@ std::optional<double> DepthMap::at(double x, double y) const {
   // Bilinear between the four cells around (x, y) when all are known, so that depths, and landmarks found
   // from them, move continuously with the frame; else the nearest cell.
   const double u = (x - x0_) / cell_, v = (y - y0_) / cell_;
-  const int c = static_cast<int>(std::floor(u)), r = static_cast<int>(std::floor(v));
+  const int c = clamped(std::floor(u), cols()), r = clamped(std::floor(v), rows());
   if (r >= 0 && c >= 0 && r + 1 < rows() && c + 1 < cols() && known(r, c) && known(r + 1, c) &&
       known(r, c + 1) && known(r + 1, c + 1)) {
     const double fu = u - c, fv = v - r;
     return (1 - fv) * ((1 - fu) * z_(r, c) + fu * z_(r, c + 1)) +
            fv * ((1 - fu) * z_(r + 1, c) + fu * z_(r + 1, c + 1));
   }
-  const int cn = static_cast<int>(std::lround(u)), rn = static_cast<int>(std::lround(v));
+  const int cn = clamped(std::round(u), cols()), rn = clamped(std::round(v), rows());
   if (rn < 0 || cn < 0 || rn >= rows() || cn >= cols() || !known(rn, cn)) return std::nullopt;
   return z_(rn, cn);
 }
@@ -140,7 +150,7 @@ std::optional<double> DepthMap::at(double x, double y) const {
 std::optional<double> DepthMap::relief(double x, double y, double radius) const {
   const std::optional<double> centre = at(x, y);
   if (!centre) return std::nullopt;
-  const int reach = static_cast<int>(std::ceil(radius / cell_));
+  const int reach = clamped(std::ceil(radius / cell_), std::max(rows(), cols()));
   double sum = 0.0;
   int n = 0, total = 0;
   for (int dr = -reach; dr <= reach; ++dr)
@@ -157,7 +167,8 @@ std::optional<double> DepthMap::relief(double x, double y, double radius) const 
 }
 
 DepthMap DepthMap::smoothed(double sigma) const {
-  const int reach = static_cast<int>(std::ceil(3.0 * sigma / cell_));
+  // Taps further than the grid is wide change nothing: a huge sigma costs at most the grid.
+  const int reach = std::max(0, clamped(std::ceil(3.0 * sigma / cell_), std::max(rows(), cols())));
   const int width = 2 * reach + 1;
   std::vector<double> kernel(static_cast<std::size_t>(width));
   auto tap = [&](int offset) -> double& {

@@ -6,7 +6,6 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 #include <system_error>
 #include <vector>
 
@@ -23,24 +22,36 @@ Error io_error(const std::filesystem::path& path, std::string_view what, int err
 
 } // namespace
 
-Result<std::string> read_file(const std::filesystem::path& path) {
+Result<std::string> read_file(const std::filesystem::path& path, std::uint64_t max_bytes) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     return make_error(ErrorCode::Io, "is a directory, not a file", source_name(path));
   std::ifstream in(path, std::ios::binary);
   if (!in) return io_error(path, "cannot open", errno);
+  auto too_large = [&](std::string_view size) {
+    return make_error(ErrorCode::CountTooLarge,
+                      fmt::format("{}: more than the {} bytes a file may have", size, max_bytes),
+                      source_name(path));
+  };
   std::string bytes;
-  in.seekg(0, std::ios::end);
-  const std::streamoff size = in.tellg();
-  if (size > 0) {
-    bytes.resize(static_cast<std::size_t>(size));
-    in.seekg(0, std::ios::beg);
-    in.read(bytes.data(), size);
-  } else { // not seekable (a pipe): read to the end
-    in.clear();
-    in.seekg(0, std::ios::beg);
-    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  const std::uintmax_t regular_size =
+      std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
+  if (!ec && regular_size > max_bytes) return too_large(fmt::format("{} bytes", regular_size));
+  if (!ec && regular_size > 0) {
+    bytes.resize(static_cast<std::size_t>(regular_size));
+    in.read(bytes.data(), static_cast<std::streamsize>(regular_size));
+    bytes.resize(static_cast<std::size_t>(in.gcount()));
   }
+  // A pipe, a device, or a file that grew: read on in chunks, never past the limit.
+  constexpr std::size_t kChunk = std::size_t{1} << 20;
+  while (in && !in.eof()) {
+    const std::size_t done = bytes.size();
+    if (done > max_bytes) return too_large("the input goes on");
+    bytes.resize(done + kChunk);
+    in.read(bytes.data() + done, static_cast<std::streamsize>(kChunk));
+    bytes.resize(done + static_cast<std::size_t>(in.gcount()));
+  }
+  if (bytes.size() > max_bytes) return too_large("the input goes on");
   if (in.bad()) return io_error(path, "cannot read", errno);
   return bytes;
 }

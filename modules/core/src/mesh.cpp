@@ -104,4 +104,11 @@ Result<void> validate(const Mesh& mesh, std::string_view source) {
   return {};
 }
 
+Result<void> check_writable(const Mesh& mesh) {
+  if (Result<void> valid = validate(mesh, mesh.name); !valid) return valid;
+  if (mesh.positions.empty())
+    return make_error(ErrorCode::Empty, "nothing to write: the mesh has no vertices", mesh.name);
+  return {};
+}
+
 } // namespace pdeface

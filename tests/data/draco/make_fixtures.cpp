@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -43,6 +44,23 @@ std::unique_ptr<draco::Mesh> square(int nan_at_point, bool wide = false) {
   return mesh;
 }
 
+// The square with its positions stored as BOOL (one byte per component, values 0, 1 and 2): a data type
+// no position can have; libdraco's converter would load those bytes as bools.
+std::unique_ptr<draco::Mesh> bool_square() {
+  std::unique_ptr<draco::Mesh> mesh = square(-1);
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_BOOL, false, 3, 0);
+  auto attribute = std::make_unique<draco::PointAttribute>(ga);
+  attribute->SetIdentityMapping();
+  attribute->Reset(9);
+  for (int i = 0; i < 9; ++i) {
+    const std::array<std::uint8_t, 3> p{std::uint8_t(i % 3), std::uint8_t(i / 3), 2};
+    attribute->SetAttributeValue(draco::AttributeValueIndex(i), p.data());
+  }
+  mesh->SetAttribute(0, std::move(attribute));
+  return mesh;
+}
+
 bool save(const std::string& path, const draco::Mesh& mesh) {
   draco::Encoder encoder; // no quantisation: positions are stored as raw floats
   encoder.SetSpeedOptions(10, 10);
@@ -57,7 +75,8 @@ bool save(const std::string& path, const draco::Mesh& mesh) {
 int main(int argc, char** argv) {
   const std::string dir = argc > 1 ? argv[1] : ".";
   if (!save(dir + "/nan_position.drc", *square(4)) || !save(dir + "/square.drc", *square(-1)) ||
-      !save(dir + "/square_generic16.drc", *square(-1, true))) {
+      !save(dir + "/square_generic16.drc", *square(-1, true)) ||
+      !save(dir + "/bool_position.drc", *bool_square())) {
     std::cerr << "encoding failed\n";
     return 1;
   }

@@ -145,7 +145,7 @@ TEST(PlyRead, AsciiFixtureWithEveryAttribute) {
   EXPECT_EQ(mesh->texcoords[2], Vec2f(1, 1)) << "texture_u/texture_v (MeshLab's names) are read";
   EXPECT_EQ(mesh->colors[2], Vec4f(0, 0, 1, 128.0f / 255.0f));
   EXPECT_TRUE(has_note(notes, "vertex properties ignored: quality"));
-  EXPECT_TRUE(has_note(notes, "element edge (2 items) ignored"));
+  EXPECT_TRUE(has_note(notes, "elements ignored: edge (2 items)"));
   EXPECT_TRUE(has_note(notes, "face colours dropped"));
 }
 

@@ -48,7 +48,7 @@ struct Decoded {
                                      std::optional<std::uint64_t> base, Notes* notes);
 
 //! A library's message in our error style: "Failed to decode geometry data.\n" becomes "failed to decode
-//! geometry data"; messages longer than 300 characters are cut (tinygltf quotes whole data URIs).
+//! geometry data"; at most 200 bytes of it, as `excerpt` quotes them (tinygltf quotes whole data URIs).
 [[nodiscard]] std::string message_text(std::string message);
 
 } // namespace pdeface::draco::detail

@@ -1,6 +1,7 @@
 #pragma once
 //! \file
-//! PLY (ASCII and binary, with or without faces), OFF and STL, read and written through OpenMesh's IO.
+//! PLY (ASCII and binary, with or without faces) and OFF read and written through OpenMesh's IO; STL written
+//! through it and read by our validator.
 //!
 //! Every input is checked by our own validator before OpenMesh sees it (OpenMesh hangs, crashes or misreads
 //! silently on bad data); errors give the header line and column, the byte offset in binary data, or the
@@ -47,8 +48,10 @@ namespace pdeface::off {
 
 namespace pdeface::stl {
 
-//! ASCII or binary STL (decided by the size: 84 + 50 × facets means binary); coincident corners are
-//! merged into shared vertices, so vertices come back renumbered in the order corners first appear.
+//! ASCII or binary STL (decided by the size: 84 + 50 × facets means binary); equal corners are merged into
+//! shared vertices, so vertices come back renumbered in the order corners first appear; facets two of whose
+//! corners are the same point are skipped with a note. Read by our own code (OpenMesh merges corners up to
+//! FLT_MIN apart), written through OpenMesh.
 //! Units come from "units mm" in the binary header or the solid line, as our writer puts them.
 [[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr);
 

@@ -4,6 +4,7 @@
 
 #include "pdeface/core/result.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -11,8 +12,14 @@
 
 namespace pdeface {
 
-//! The bytes of a file. Errors: `Io` (cannot open or read; a directory).
-[[nodiscard]] Result<std::string> read_file(const std::filesystem::path& path);
+//! The most bytes `read_file` reads: 512 MiB, far above any face scan (a million-vertex ASCII PLY has ~60
+//! MB), and a bound on what a device (`/dev/zero`), a pipe or a huge file can make a command allocate.
+inline constexpr std::uint64_t kMaxFileBytes = std::uint64_t{1} << 29;
+
+//! The bytes of a file, a pipe or a device, at most `max_bytes` of them. Errors: `Io` (cannot open or read;
+//! a directory), `CountTooLarge` (more than `max_bytes`: nothing more is read).
+[[nodiscard]] Result<std::string> read_file(const std::filesystem::path& path,
+                                            std::uint64_t max_bytes = kMaxFileBytes);
 
 //! Writes `bytes` to a temporary file beside `path`, then renames it over `path`: readers of `path` see
 //! either the old file or the complete new one, and a failure leaves nothing behind.

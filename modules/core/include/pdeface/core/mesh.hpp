@@ -91,4 +91,9 @@ struct PointCloud {
 //! index is in range, every coordinate is finite. Returns the first violation, naming `source`.
 [[nodiscard]] Result<void> validate(const Mesh& mesh, std::string_view source = {});
 
+//! What every writer requires: `validate`, and at least one vertex. An empty mesh is written by no writer
+//! and read from no file (each reader refuses a file without vertices: `Empty`), so that every file
+//! written reads back. Errors: those of `validate`, `Empty` naming the mesh.
+[[nodiscard]] Result<void> check_writable(const Mesh& mesh);
+
 } // namespace pdeface
