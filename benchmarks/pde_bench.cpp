@@ -21,6 +21,7 @@
 #include "pdeface/align/frame.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/pde/mesher.hpp"
 #include "pdeface/pde/surface.hpp"
 #include "pdeface/slice/profiles.hpp"
 
@@ -345,6 +346,49 @@ void evaluate(benchmark::State& state, Memory memory) {
   for (auto _ : state)
     benchmark::DoNotOptimize(s.evaluate(grid_side, grid_side));
 }
+
+// The mesher's parts on the synthetic face, memory reused: what it holds (the coefficients at every u and
+// the cosines of every v), the rows' positions alone, positions and normals, the triangles, and all of it.
+void mesher_make(benchmark::State& state) {
+  const Surface& s = surface(static_cast<std::size_t>(state.range(0)));
+  pin_allocator(Memory::Reused);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(GridMesher(s, grid_side, grid_side));
+}
+
+void mesher_rows(benchmark::State& state, bool normals) {
+  const GridMesher mesher(surface(static_cast<std::size_t>(state.range(0))), grid_side, grid_side);
+  pin_allocator(Memory::Reused);
+  std::vector<Vec3> positions(mesher.vertex_count());
+  std::vector<Vec3f> n(normals ? mesher.vertex_count() : 0);
+  for (auto _ : state) {
+    mesher.rows(0, grid_side, positions, n);
+    benchmark::DoNotOptimize(positions.data());
+    benchmark::DoNotOptimize(n.data());
+  }
+}
+
+void mesher_triangles(benchmark::State& state) {
+  const GridMesher mesher(surface(30), grid_side, grid_side);
+  std::vector<Triangle> triangles(mesher.triangle_count());
+  for (auto _ : state) {
+    mesher.triangles(0, grid_side - 1, triangles);
+    benchmark::DoNotOptimize(triangles.data());
+  }
+}
+
+void mesher_mesh(benchmark::State& state) {
+  const Surface& s = surface(static_cast<std::size_t>(state.range(0)));
+  pin_allocator(Memory::Reused);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(s.mesh(grid_side, grid_side));
+}
+
+BENCHMARK(mesher_make)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(mesher_rows, positions, false)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(mesher_rows, with_normals, true)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK(mesher_triangles)->Unit(benchmark::kMicrosecond);
+BENCHMARK(mesher_mesh)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(solve, spline, Options{})->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(solve, paper, Options{.scheme = Scheme::Paper})
