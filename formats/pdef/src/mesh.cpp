@@ -59,6 +59,10 @@ Result<pde::GridMesher> mesher(const pde::Surface& surface, Resolution grid, con
                       fmt::format("a {} x {} grid has more than {} vertices: ask for a coarser resolution",
                                   grid.u, grid.v, kMaxGridVertices),
                       std::string(source));
+  if (!map.linear.allFinite() || !map.offset.allFinite()) // a file's frame: a tiny scale
+    return make_error(ErrorCode::NonFinite,
+                      "the frame maps the surface beyond the range of double: its scale is too small",
+                      std::string(source));
   return pde::GridMesher(surface, grid.u, grid.v, {.map = map});
 }
 

@@ -54,8 +54,8 @@ struct SurfaceMesh {
 
 //! `surface` on `grid` (at least 2 × 2) as meshes with normals (`pde::GridMesher`): in the canonical frame,
 //! and made directly in the scan's frame by `scan_map(frame)` (positions, and normals from them; units
-//! those of the scan). Errors: `InvalidArgument` (naming `source`) for a grid of more than
-//! `kMaxGridVertices`.
+//! those of the scan). Errors (naming `source`): `InvalidArgument` for a grid of more than
+//! `kMaxGridVertices`, `NonFinite` for a frame whose map is not finite.
 [[nodiscard]] Result<SurfaceMesh> surface_mesh(const pde::Surface& surface, Resolution grid,
                                                const Frame& frame, std::string_view source = {});
 
@@ -64,7 +64,8 @@ struct SurfaceMesh {
 
 //! What makes `to_mesh`'s mesh: `surface` (the face's, `surface_of`) on `resolution` (default about 1 mm
 //! spacing) in the scan's frame, for writers that stream the mesh row by row instead of holding it.
-//! Errors: `InvalidArgument` for a grid of more than `kMaxGridVertices`.
+//! Errors: `InvalidArgument` for a grid of more than `kMaxGridVertices`, `NonFinite` for a frame whose map
+//! is not finite (a scale so small that 1/scale overflows).
 [[nodiscard]] Result<pde::GridMesher> scan_mesher(const Face& face, const pde::Surface& surface,
                                                   std::optional<Resolution> resolution = std::nullopt,
                                                   std::string_view source = {});
