@@ -31,13 +31,6 @@
 
 #include <benchmark/benchmark.h>
 
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-#if defined(__unix__)
-#include <sys/resource.h>
-#endif
-
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -54,55 +47,9 @@ using namespace pdeface::pde;
 
 constexpr std::size_t grid_side = 316;
 
-enum class Memory { Fresh, Reused };
-
-// See the top of the file. Without glibc the allocator is left as it is.
-void pin_allocator(Memory memory) {
-#if defined(__GLIBC__)
-  // Setting either threshold also turns off glibc's adjusting of them to the sizes freed so far.
-  if (memory == Memory::Fresh) {
-    mallopt(M_MMAP_THRESHOLD, 64 * 1024);
-    mallopt(M_TRIM_THRESHOLD, 128 * 1024);
-  } else {
-    mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024); // glibc's largest: blocks up to 32 MiB come from the heap
-    mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
-  }
-#else
-  (void)memory;
-#endif
-}
-
-// Counts the page faults of the timed loop (the counter "faults", per iteration), where the system says.
-class FaultCounter {
-public:
-  explicit FaultCounter(benchmark::State& state) : state_(state), start_(faults()) {}
-  FaultCounter(const FaultCounter&) = delete;
-  FaultCounter& operator=(const FaultCounter&) = delete;
-  ~FaultCounter() {
-    if (start_ >= 0)
-      state_.counters["faults"] = benchmark::Counter(static_cast<double>(faults() - start_ - excluded_),
-                                                     benchmark::Counter::kAvgIterations);
-  }
-  //! Runs `untimed` (between PauseTiming and ResumeTiming) without counting its faults.
-  template <class F> void exclude(F&& untimed) {
-    const long before = faults();
-    untimed();
-    excluded_ += faults() - before;
-  }
-
-private:
-  static long faults() {
-#if defined(__unix__)
-    rusage usage{};
-    if (getrusage(RUSAGE_SELF, &usage) == 0) return usage.ru_minflt + usage.ru_majflt;
-#endif
-    return -1;
-  }
-
-  benchmark::State& state_;
-  long start_;
-  long excluded_ = 0;
-};
+using bench::FaultCounter;
+using bench::Memory;
+using bench::pin_allocator;
 
 // --- Real curves ------------------------------------------------------------------------------------
 
