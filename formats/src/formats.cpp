@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 #include <string>
 
 namespace pdeface::formats {
@@ -270,8 +271,9 @@ Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& pa
 
 namespace {
 
-// A .pdef file as binary PLY, written as it is made: the surface's rows a block at a time (about 1 MiB of
-// file each), never the whole mesh (at a million vertices 60 MB as a Mesh, 50 MB as PLY, and as many page
+// A .pdef file as binary PLY, written as it is made: the surface's rows a block at a time, each block with
+// its mirror image (rows v and π − v share their product) written at its place in the file, then the
+// triangles; never the whole mesh (at a million vertices 60 MB as a Mesh, 50 MB as PLY, and as many page
 // faults). The bytes are those read_mesh + write_mesh give, and so are the errors.
 Result<ConvertReport> stream_pdef_as_ply(std::string_view bytes, const std::filesystem::path& in,
                                          const std::filesystem::path& out, const ReadOptions& options) {
@@ -289,43 +291,65 @@ Result<ConvertReport> stream_pdef_as_ply(std::string_view bytes, const std::file
                                  face->frame.scan_units};
   Result<AtomicFile> file = AtomicFile::create(out);
   if (!file) return std::move(file).error();
+  const std::string header = ply::binary_header(layout);
+  if (Result<void> written = file->append(header); !written) return std::move(written).error();
 
   constexpr std::size_t kBlockBytes = std::size_t{1} << 20;
-  const std::size_t nu = mesher->u_count(), nv = mesher->v_count();
-  const std::size_t rows = std::clamp<std::size_t>(kBlockBytes / (nu * 24), 1, nv);
-  std::string block = ply::binary_header(layout);
-  block.reserve(kBlockBytes + block.size() + rows * nu * 24);
-  const auto flush = [&]() -> Result<void> {
-    if (Result<void> written = file->append(block); !written) return written;
-    block.clear();
+  const std::size_t nu = mesher->u_count(), nv = mesher->v_count(), half = (nv + 1) / 2;
+  const std::size_t row_bytes = ply::binary_vertex_bytes(nu, true);
+  const std::size_t rows = std::clamp<std::size_t>(kBlockBytes / row_bytes, 1, half);
+  const std::size_t cell_rows =
+      std::clamp<std::size_t>(kBlockBytes / ply::binary_triangle_bytes(2 * (nu - 1)), 1, nv - 1);
+  std::vector<char> buffer(
+      std::max(2 * rows * row_bytes, ply::binary_triangle_bytes(2 * (nu - 1) * cell_rows)));
+  std::vector<Vec3> positions(2 * rows * nu);
+  std::vector<Vec3f> normals(2 * rows * nu);
+  const std::string name = face->name.empty() ? in.stem().string() : face->name;
+  // Rows [first, first + count) made (`blocks`) are converted and written at their place.
+  const auto write_rows = [&](std::span<const pde::GridMesher::RowBlock> blocks) -> Result<void> {
+    mesher->rows(blocks);
+    for (const pde::GridMesher::RowBlock& b : blocks) {
+      if (b.count == 0) continue;
+      const std::span<const double> coordinates(b.positions.data()->data(), 3 * b.positions.size());
+      if (!std::ranges::all_of(coordinates, [](double c) { return std::isfinite(c); })) {
+        const auto bad = std::ranges::find_if(b.positions, [](const Vec3& p) { return !p.allFinite(); });
+        return make_error(
+            ErrorCode::NonFinite, // what validate() says of the mesh (a hostile frame's overflow)
+            fmt::format("vertex {} has a non-finite coordinate",
+                        b.first * nu + static_cast<std::size_t>(bad - b.positions.begin())),
+            name);
+      }
+      const std::span<char> records = std::span(buffer).first(b.count * row_bytes);
+      ply::put_binary_vertices(records, b.positions, b.normals);
+      if (Result<void> written =
+              file->write_at(header.size() + b.first * row_bytes, {records.data(), records.size()});
+          !written)
+        return written;
+    }
     return {};
   };
-  std::vector<Vec3> positions(rows * nu);
-  std::vector<Vec3f> normals(rows * nu);
-  for (std::size_t k = 0; k < nv; k += rows) {
-    const std::size_t count = std::min(rows, nv - k);
-    const std::span<Vec3> p = std::span(positions).first(count * nu);
-    const std::span<Vec3f> n = std::span(normals).first(count * nu);
-    mesher->rows(k, count, p, n);
-    for (std::size_t i = 0; i < p.size(); ++i) // what validate() refuses (a hostile frame's overflow)
-      if (!p[i].allFinite())
-        return make_error(ErrorCode::NonFinite,
-                          fmt::format("vertex {} has a non-finite coordinate", k * nu + i),
-                          face->name.empty() ? in.stem().string() : face->name);
-    ply::append_binary_vertices(block, p, n);
-    if (block.size() >= kBlockBytes)
-      if (Result<void> written = flush(); !written) return std::move(written).error();
+  for (std::size_t first = 0; first < half; first += rows) {
+    const std::size_t count = std::min(rows, half - first);
+    const std::size_t mirror = std::max(nv - first - count, first + count), mirrored = nv - first - mirror;
+    const std::span<Vec3> p(positions);
+    const std::span<Vec3f> n(normals);
+    const pde::GridMesher::RowBlock blocks[] = {
+        {first, count, p.first(count * nu), n.first(count * nu)},
+        {mirror, mirrored, p.subspan(count * nu, mirrored * nu), n.subspan(count * nu, mirrored * nu)}};
+    if (Result<void> written = write_rows(blocks); !written) return std::move(written).error();
   }
-  std::vector<Triangle> triangles(2 * (nu - 1) * rows);
-  for (std::size_t k = 0; k + 1 < nv; k += rows) {
-    const std::size_t count = std::min(rows, nv - 1 - k);
+  std::vector<Triangle> triangles(2 * (nu - 1) * cell_rows);
+  std::uint64_t at = header.size() + nv * row_bytes;
+  for (std::size_t k = 0; k + 1 < nv; k += cell_rows) {
+    const std::size_t count = std::min(cell_rows, nv - 1 - k);
     const std::span<Triangle> t = std::span(triangles).first(2 * (nu - 1) * count);
     mesher->triangles(k, count, t);
-    ply::append_binary_triangles(block, t);
-    if (block.size() >= kBlockBytes)
-      if (Result<void> written = flush(); !written) return std::move(written).error();
+    const std::span<char> records = std::span(buffer).first(ply::binary_triangle_bytes(t.size()));
+    ply::put_binary_triangles(records, t);
+    if (Result<void> written = file->write_at(at, {records.data(), records.size()}); !written)
+      return std::move(written).error();
+    at += records.size();
   }
-  if (Result<void> written = flush(); !written) return std::move(written).error();
   if (Result<void> committed = file->commit(); !committed) return std::move(committed).error();
   return ConvertReport{Format::Pdef,    Format::Ply,      bytes.size(), ply::binary_size(layout),
                        layout.vertices, layout.triangles, layout.units};

@@ -85,6 +85,18 @@ TEST(File, AnAtomicFileAppearsWholeOnCommitOnly) {
   EXPECT_EQ(dir.entries(), 1U);
 }
 
+TEST(File, AnAtomicFileCanBeWrittenOutOfOrder) {
+  test::TempDir dir;
+  Result<AtomicFile> file = AtomicFile::create(dir / "out.bin");
+  ASSERT_TRUE(file);
+  ASSERT_TRUE(file->write_at(6, "world").ok());
+  ASSERT_TRUE(file->write_at(0, "hello ").ok());
+  ASSERT_TRUE(file->append("hel").ok()); // appends where the appending left off: the start
+  ASSERT_TRUE(file->commit().ok());
+  EXPECT_EQ(slurp(dir / "out.bin"), "hello world");
+  EXPECT_EQ(dir.entries(), 1U);
+}
+
 TEST(File, ReadErrorsNameTheFile) {
   test::TempDir dir;
   auto missing = read_file(dir / "absent.wrl");

@@ -78,6 +78,20 @@ TEST(PdeMesher, RowsInAnyPiecesAreTheSameToTheBit) {
         mesher.rows(first, count, alone, {}); // positions only
         EXPECT_TRUE(alone == positions);
       }
+    // A block and its mirror image in one call (as a streaming writer asks for them).
+    for (std::size_t first = 0; first < nv / 2; ++first) {
+      const std::size_t count = std::min<std::size_t>(2, nv / 2 - first), mirror = nv - first - count;
+      std::vector<Vec3> low(count * 9), high(count * 9);
+      std::vector<Vec3f> low_normals(count * 9), high_normals(count * 9);
+      const GridMesher::RowBlock blocks[] = {{first, count, low, low_normals},
+                                             {mirror, count, high, high_normals}};
+      mesher.rows(blocks);
+      const auto at = [&](std::size_t row) { return static_cast<std::ptrdiff_t>(row * 9); };
+      EXPECT_TRUE(std::equal(low.begin(), low.end(), whole.positions.begin() + at(first)));
+      EXPECT_TRUE(std::equal(high.begin(), high.end(), whole.positions.begin() + at(mirror)));
+      EXPECT_TRUE(std::equal(low_normals.begin(), low_normals.end(), whole.normals.begin() + at(first)));
+      EXPECT_TRUE(std::equal(high_normals.begin(), high_normals.end(), whole.normals.begin() + at(mirror)));
+    }
     for (std::size_t first = 0; first + 1 < nv; ++first) {
       std::vector<Triangle> triangles(2 * 8);
       mesher.triangles(first, 1, triangles);
@@ -143,6 +157,9 @@ TEST(PdeMesher, RefusesBadCalls) {
   EXPECT_THROW(mesher.rows(5, 2, positions, normals), std::invalid_argument);
   EXPECT_THROW(mesher.rows(0, 1, std::span<Vec3>(positions).first(4), normals), std::invalid_argument);
   EXPECT_THROW(mesher.rows(0, 1, positions, std::span<Vec3f>(normals).first(4)), std::invalid_argument);
+  std::vector<Vec3> more(5);
+  const GridMesher::RowBlock twice[] = {{2, 1, positions, normals}, {2, 1, more, {}}};
+  EXPECT_THROW(mesher.rows(twice), std::invalid_argument);
   std::vector<Triangle> triangles(8);
   EXPECT_THROW(mesher.triangles(5, 1, triangles), std::invalid_argument);
   EXPECT_THROW(mesher.triangles(0, 1, std::span<Triangle>(triangles).first(7)), std::invalid_argument);

@@ -35,19 +35,24 @@ std::string binary_header(const BinaryLayout& layout) {
   return header;
 }
 
+std::size_t binary_vertex_bytes(std::size_t count, bool normals) { return count * vertex_record(normals); }
+
+std::size_t binary_triangle_bytes(std::size_t count) { return count * kFaceRecord; }
+
 std::size_t binary_size(const BinaryLayout& layout) {
-  return binary_header(layout).size() + layout.vertices * vertex_record(layout.normals) +
-         layout.triangles * kFaceRecord;
+  return binary_header(layout).size() + binary_vertex_bytes(layout.vertices, layout.normals) +
+         binary_triangle_bytes(layout.triangles);
 }
 
-void append_binary_vertices(std::string& out, std::span<const Vec3> positions,
-                            std::span<const Vec3f> normals) {
+void put_binary_vertices(std::span<char> out, std::span<const Vec3> positions,
+                         std::span<const Vec3f> normals) {
   const bool with_normals = !normals.empty();
   if (with_normals && normals.size() != positions.size())
     throw std::invalid_argument("ply: as many normals as positions, or none");
-  const std::size_t record = vertex_record(with_normals), start = out.size();
-  out.resize(start + positions.size() * record);
-  char* at = out.data() + start;
+  if (out.size() < binary_vertex_bytes(positions.size(), with_normals))
+    throw std::invalid_argument("ply: no room for the vertex records");
+  const std::size_t record = vertex_record(with_normals);
+  char* at = out.data();
   for (std::size_t i = 0; i < positions.size(); ++i, at += record) {
     for (std::size_t c = 0; c < 3; ++c)
       put32(at + 4 * c, static_cast<float>(positions[i][static_cast<Eigen::Index>(c)]));
@@ -57,10 +62,10 @@ void append_binary_vertices(std::string& out, std::span<const Vec3> positions,
   }
 }
 
-void append_binary_triangles(std::string& out, std::span<const Triangle> triangles) {
-  const std::size_t start = out.size();
-  out.resize(start + triangles.size() * kFaceRecord);
-  char* at = out.data() + start;
+void put_binary_triangles(std::span<char> out, std::span<const Triangle> triangles) {
+  if (out.size() < binary_triangle_bytes(triangles.size()))
+    throw std::invalid_argument("ply: no room for the face records");
+  char* at = out.data();
   for (const Triangle& t : triangles) {
     *at = 3;
     for (std::size_t c = 0; c < 3; ++c)

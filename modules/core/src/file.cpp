@@ -145,6 +145,22 @@ Result<void> AtomicFile::append(std::string_view bytes) {
   return io_error(path_, "cannot write", err);
 }
 
+Result<void> AtomicFile::write_at(std::uint64_t offset, std::string_view bytes) {
+  if (descriptor_ < 0) throw std::logic_error("AtomicFile: write after commit or a failure");
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n =
+        ::pwrite(descriptor_, bytes.data() + done, bytes.size() - done, static_cast<off_t>(offset + done));
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      abandon();
+      return io_error(path_, "cannot write", err);
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return {};
+}
+
 Result<void> AtomicFile::commit() {
   if (descriptor_ < 0) throw std::logic_error("AtomicFile: commit twice or after a failure");
   const int fd = std::exchange(descriptor_, -1);

@@ -242,38 +242,52 @@ GridMesher::GridMesher(const Surface& surface, std::size_t u_count, std::size_t 
 
 void GridMesher::rows(std::size_t first, std::size_t count, std::span<Vec3> positions,
                       std::span<Vec3f> normals) const {
-  if (first > v_count_ || count > v_count_ - first) throw std::invalid_argument("pde: rows outside the grid");
-  if (positions.size() != count * u_count_ || (!normals.empty() && normals.size() != count * u_count_))
-    throw std::invalid_argument("pde: rows need u_count points per row");
-  if (count == 0) return;
-  const std::size_t width = 3 * u_count_, end = first + count;
-  // Normals need the rows beside the ones asked for: made into `beside` (before, after).
-  const bool with_normals = !normals.empty();
-  const std::size_t from = with_normals && first > 0 ? first - 1 : first;
-  const std::size_t to = with_normals && end < v_count_ ? end + 1 : end;
-  std::vector<double> beside((first - from + to - end) * width);
-  double* const asked = positions.data()->data();
-  const auto row = [&](std::size_t k) -> double* {
-    if (k < first) return beside.data();
-    if (k >= end) return beside.data() + (first - from) * width;
-    return asked + (k - first) * width;
-  };
+  const RowBlock block{first, count, positions, normals};
+  rows(std::span(&block, 1));
+}
+
+void GridMesher::rows(std::span<const RowBlock> blocks) const {
+  // Where every row asked for goes, and the rows beside them that normals need (made into `beside`).
+  std::vector<double*> row(v_count_, nullptr);
+  const std::size_t width = 3 * u_count_;
+  for (const RowBlock& b : blocks) {
+    if (b.first > v_count_ || b.count > v_count_ - b.first)
+      throw std::invalid_argument("pde: rows outside the grid");
+    if (b.positions.size() != b.count * u_count_ ||
+        (!b.normals.empty() && b.normals.size() != b.count * u_count_))
+      throw std::invalid_argument("pde: rows need u_count points per row");
+    for (std::size_t k = 0; k < b.count; ++k) {
+      if (row[b.first + k]) throw std::invalid_argument("pde: a row asked for twice");
+      row[b.first + k] = b.positions.data()->data() + k * width;
+    }
+  }
+  std::vector<std::size_t> missing;
+  for (const RowBlock& b : blocks)
+    if (!b.normals.empty() && b.count > 0)
+      for (const std::size_t k :
+           {b.first > 0 ? b.first - 1 : b.first, std::min(b.first + b.count, v_count_ - 1)})
+        if (!row[k] && std::ranges::find(missing, k) == missing.end()) missing.push_back(k);
+  std::vector<double> beside(missing.size() * width);
+  for (std::size_t m = 0; m < missing.size(); ++m)
+    row[missing[m]] = beside.data() + m * width;
+
   std::vector<RowPair> pairs;
   for (std::size_t h = 0; h < (v_count_ + 1) / 2; ++h) {
     const std::size_t mirror = v_count_ - 1 - h;
-    RowPair pair{h, h >= from && h < to ? row(h) : nullptr,
-                 mirror != h && mirror >= from && mirror < to ? row(mirror) : nullptr};
+    const RowPair pair{h, row[h], mirror != h ? row[mirror] : nullptr};
     if (pair.low || pair.high) pairs.push_back(pair);
   }
   const detail::MesherKernels& k = *kernels_;
   k.products({coefficients_.data(), stride_, columns_, width, cosines_.data()}, pairs.data(), pairs.size());
-  if (!with_normals) return;
-  for (std::size_t r = first; r < end; ++r) {
-    const double* below = row(r == 0 ? 0 : r - 1);
-    const double* above = row(r + 1 == v_count_ ? r : r + 1);
-    if (reversed_) std::swap(below, above); // X_u × (−X_v): the mapped surface's side
-    k.normals(row(r), below, above, u_count_, normal_scale_,
-              normals.data()->data() + (r - first) * u_count_ * 3);
+  for (const RowBlock& b : blocks) {
+    if (b.normals.empty()) continue;
+    for (std::size_t r = b.first; r < b.first + b.count; ++r) {
+      const double* below = row[r == 0 ? 0 : r - 1];
+      const double* above = row[r + 1 == v_count_ ? r : r + 1];
+      if (reversed_) std::swap(below, above); // X_u × (−X_v): the mapped surface's side
+      k.normals(row[r], below, above, u_count_, normal_scale_,
+                b.normals.data()->data() + (r - b.first) * u_count_ * 3);
+    }
   }
 }
 

@@ -27,13 +27,20 @@ struct BinaryLayout {
 //! The whole file's size in bytes.
 [[nodiscard]] std::size_t binary_size(const BinaryLayout& layout);
 
-//! Appends the vertex records of `positions` (rounded to float32, as `write` does) and, unless `normals`
-//! is empty, their normals.
-//! \throw std::invalid_argument when `normals` is neither empty nor as long as `positions`
-void append_binary_vertices(std::string& out, std::span<const Vec3> positions,
-                            std::span<const Vec3f> normals);
+//! The bytes of `count` vertex records (float x y z, and nx ny nz with `normals`).
+[[nodiscard]] std::size_t binary_vertex_bytes(std::size_t count, bool normals);
+//! The bytes of `count` face records (uchar 3, int i j k).
+[[nodiscard]] std::size_t binary_triangle_bytes(std::size_t count);
 
-//! Appends the face records of `triangles`: the count 3 (uchar), then the indices (int32).
-void append_binary_triangles(std::string& out, std::span<const Triangle> triangles);
+//! Writes the vertex records of `positions` (rounded to float32, as `write` does) and, unless `normals` is
+//! empty, their normals, at the start of `out`.
+//! \throw std::invalid_argument when `normals` is neither empty nor as long as `positions`, or `out` is
+//! shorter than `binary_vertex_bytes`
+void put_binary_vertices(std::span<char> out, std::span<const Vec3> positions,
+                         std::span<const Vec3f> normals);
+
+//! Writes the face records of `triangles` at the start of `out`: the count 3, then the indices.
+//! \throw std::invalid_argument when `out` is shorter than `binary_triangle_bytes`
+void put_binary_triangles(std::span<char> out, std::span<const Triangle> triangles);
 
 } // namespace pdeface::ply

@@ -4,6 +4,7 @@
 
 #include "pdeface/core/result.hpp"
 
+#include <cstdint>
 #include <filesystem>
 #include <span>
 #include <string>
@@ -46,6 +47,9 @@ public:
 
   //! Appends `bytes`. Errors: `Io` (a full disk); the file is then abandoned.
   [[nodiscard]] Result<void> append(std::string_view bytes);
+  //! Writes `bytes` at `offset` (the file grows as needed; a gap reads as zeros until written), for output
+  //! made out of order; `append` continues after what it appended last. Errors: as `append`.
+  [[nodiscard]] Result<void> write_at(std::uint64_t offset, std::string_view bytes);
   //! Closes the temporary file and renames it over the path. Errors: `Io`; nothing is left behind.
   //! \throw std::logic_error when called twice or after a failed append
   [[nodiscard]] Result<void> commit();

@@ -63,6 +63,18 @@ public:
   //! \throw std::invalid_argument for rows outside the grid or spans of another size
   void rows(std::size_t first, std::size_t count, std::span<Vec3> positions, std::span<Vec3f> normals) const;
 
+  //! A block of rows for `rows(blocks)`: as the arguments of `rows(first, count, positions, normals)`.
+  struct RowBlock {
+    std::size_t first = 0;
+    std::size_t count = 0;
+    std::span<Vec3> positions;
+    std::span<Vec3f> normals;
+  };
+  //! Several blocks of rows at once (none asked for twice): rows v and π − v share one product, so a
+  //! block and its mirror image (rows v_count − first − count … v_count − first − 1) cost about one block.
+  //! \throw std::invalid_argument as `rows`, and for a row in two blocks
+  void rows(std::span<const RowBlock> blocks) const;
+
   //! The triangles of cell rows [first, first + count) (cell row k lies between grid rows k and k + 1),
   //! 2 (u_count − 1) each, in `triangulate`'s order.
   //! \throw std::invalid_argument for cell rows outside the grid or a span of another size
