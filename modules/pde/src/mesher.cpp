@@ -15,6 +15,7 @@
 #include "mode_solver.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -94,18 +95,30 @@ template <std::size_t Lanes>
   }
 }
 
+// Row `row`'s interleaved points (x, y, z) as three planes, `plane` doubles apart: the normals read each
+// row as planes, so that their loop needs no shuffling.
+[[gnu::always_inline]] inline void planes(const double* row, std::size_t u_count, std::size_t plane,
+                                          double* out) {
+  for (std::size_t i = 0; i < u_count; ++i) {
+    out[i] = row[3 * i];
+    out[plane + i] = row[3 * i + 1];
+    out[2 * plane + i] = row[3 * i + 2];
+  }
+}
+
 // The unit normal X_u × X_v of point i of `row` from its neighbours (u: points i0 and i1 of `row`; v: point i
-// of `below` and `above`); 0 where the differences are parallel or vanish. The cross product is made in
-// double, scaled by `scale` (a power of two that brings the grid's cross products near 1, so float's range
-// holds them) and normalised in float, where a square root and a division cost a quarter of double's.
-// Written so that the loop over a row vectorises: no branch, the division made whether or not it is kept.
+// of `below` and `above`), all three rows as planes; 0 where the differences are parallel or vanish. The
+// cross product is made in double, scaled by `scale` (a power of two that brings the grid's cross products
+// near 1, so float's range holds them) and normalised in float, where a square root and a division cost a
+// quarter of double's. Written so that the loop over a row vectorises: no branch, the division made whether
+// or not it is kept.
 [[gnu::always_inline]] inline void normal(const double* row, const double* below, const double* above,
-                                          std::size_t i0, std::size_t i, std::size_t i1, double scale,
-                                          float* out) {
-  const double ux = row[3 * i1] - row[3 * i0], uy = row[3 * i1 + 1] - row[3 * i0 + 1],
-               uz = row[3 * i1 + 2] - row[3 * i0 + 2];
-  const double vx = above[3 * i] - below[3 * i], vy = above[3 * i + 1] - below[3 * i + 1],
-               vz = above[3 * i + 2] - below[3 * i + 2];
+                                          std::size_t plane, std::size_t i0, std::size_t i, std::size_t i1,
+                                          double scale, float* out) {
+  const double ux = row[i1] - row[i0], uy = row[plane + i1] - row[plane + i0],
+               uz = row[2 * plane + i1] - row[2 * plane + i0];
+  const double vx = above[i] - below[i], vy = above[plane + i] - below[plane + i],
+               vz = above[2 * plane + i] - below[2 * plane + i];
   const auto nx = static_cast<float>(scale * (uy * vz - uz * vy)),
              ny = static_cast<float>(scale * (uz * vx - ux * vz)),
              nz = static_cast<float>(scale * (ux * vy - uy * vx));
@@ -118,19 +131,22 @@ template <std::size_t Lanes>
 }
 
 [[gnu::always_inline]] inline void normals(const double* row, const double* below, const double* above,
-                                           std::size_t u_count, double scale, float* out) {
-  normal(row, below, above, 0, 0, 1, scale, out);
+                                           std::size_t u_count, std::size_t plane, double scale, float* out) {
+  normal(row, below, above, plane, 0, 0, 1, scale, out);
   for (std::size_t i = 1; i + 1 < u_count; ++i)
-    normal(row, below, above, i - 1, i, i + 1, scale, out);
-  normal(row, below, above, u_count - 2, u_count - 1, u_count - 1, scale, out);
+    normal(row, below, above, plane, i - 1, i, i + 1, scale, out);
+  normal(row, below, above, plane, u_count - 2, u_count - 1, u_count - 1, scale, out);
 }
 
 void products_sse2(const Product& p, const RowPair* pairs, std::size_t count) {
   products<2>(p, pairs, count);
 }
+void planes_sse2(const double* row, std::size_t u_count, std::size_t plane, double* out) {
+  planes(row, u_count, plane, out);
+}
 void normals_sse2(const double* row, const double* below, const double* above, std::size_t u_count,
-                  double scale, float* out) {
-  normals(row, below, above, u_count, scale, out);
+                  std::size_t plane, double scale, float* out) {
+  normals(row, below, above, u_count, plane, scale, out);
 }
 
 #if defined(__x86_64__) && defined(__GNUC__)
@@ -138,16 +154,25 @@ void normals_sse2(const double* row, const double* below, const double* above, s
 [[gnu::target("avx2")]] void products_avx2(const Product& p, const RowPair* pairs, std::size_t count) {
   products<4>(p, pairs, count);
 }
+[[gnu::target("avx2")]] void planes_avx2(const double* row, std::size_t u_count, std::size_t plane,
+                                         double* out) {
+  planes(row, u_count, plane, out);
+}
 [[gnu::target("avx2")]] void normals_avx2(const double* row, const double* below, const double* above,
-                                          std::size_t u_count, double scale, float* out) {
-  normals(row, below, above, u_count, scale, out);
+                                          std::size_t u_count, std::size_t plane, double scale, float* out) {
+  normals(row, below, above, u_count, plane, scale, out);
 }
 [[gnu::target("avx512f")]] void products_avx512(const Product& p, const RowPair* pairs, std::size_t count) {
   products<kMaxLanes>(p, pairs, count);
 }
+[[gnu::target("avx512f")]] void planes_avx512(const double* row, std::size_t u_count, std::size_t plane,
+                                              double* out) {
+  planes(row, u_count, plane, out);
+}
 [[gnu::target("avx512f")]] void normals_avx512(const double* row, const double* below, const double* above,
-                                               std::size_t u_count, double scale, float* out) {
-  normals(row, below, above, u_count, scale, out);
+                                               std::size_t u_count, std::size_t plane, double scale,
+                                               float* out) {
+  normals(row, below, above, u_count, plane, scale, out);
 }
 #endif
 
@@ -156,7 +181,8 @@ void normals_sse2(const double* row, const double* below, const double* above, s
 namespace detail {
 struct MesherKernels {
   void (*products)(const Product&, const RowPair*, std::size_t);
-  void (*normals)(const double*, const double*, const double*, std::size_t, double, float*);
+  void (*planes)(const double*, std::size_t, std::size_t, double*);
+  void (*normals)(const double*, const double*, const double*, std::size_t, std::size_t, double, float*);
 };
 } // namespace detail
 
@@ -164,10 +190,10 @@ namespace {
 
 // The widest kernels this processor runs with at most `max_lanes` doubles a vector (0: any).
 const detail::MesherKernels* pick_kernels(std::size_t max_lanes) {
-  static const detail::MesherKernels sse2{products_sse2, normals_sse2};
+  static const detail::MesherKernels sse2{products_sse2, planes_sse2, normals_sse2};
 #if defined(PDEFACE_X86_KERNELS)
-  static const detail::MesherKernels avx2{products_avx2, normals_avx2},
-      avx512{products_avx512, normals_avx512};
+  static const detail::MesherKernels avx2{products_avx2, planes_avx2, normals_avx2},
+      avx512{products_avx512, planes_avx512, normals_avx512};
   static const bool has_avx2 = (__builtin_cpu_init(), __builtin_cpu_supports("avx2") != 0);
   static const bool has_avx512 = (__builtin_cpu_init(), __builtin_cpu_supports("avx512f") != 0);
   if (has_avx512 && (max_lanes == 0 || max_lanes >= 8)) return &avx512;
@@ -279,13 +305,26 @@ void GridMesher::rows(std::span<const RowBlock> blocks) const {
   }
   const detail::MesherKernels& k = *kernels_;
   k.products({coefficients_.data(), stride_, columns_, width, cosines_.data()}, pairs.data(), pairs.size());
+  // Normals: each row turned into planes once (a ring of three: the row, and the rows below and above).
+  const std::size_t plane = (u_count_ + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
+  std::vector<double> ring(std::size_t{9} * plane); // three rows of three planes
   for (const RowBlock& b : blocks) {
     if (b.normals.empty()) continue;
+    std::array<std::size_t, 3> held{v_count_, v_count_, v_count_}; // the row in each slot of the ring
+    const auto planes_of = [&](std::size_t r) {
+      double* slot = ring.data() + (r % 3) * 3 * plane;
+      if (held[r % 3] != r) {
+        k.planes(row[r], u_count_, plane, slot);
+        held[r % 3] = r;
+      }
+      return slot;
+    };
     for (std::size_t r = b.first; r < b.first + b.count; ++r) {
-      const double* below = row[r == 0 ? 0 : r - 1];
-      const double* above = row[r + 1 == v_count_ ? r : r + 1];
+      const double* below = planes_of(r == 0 ? 0 : r - 1);
+      const double* above = planes_of(r + 1 == v_count_ ? r : r + 1);
+      const double* middle = planes_of(r);
       if (reversed_) std::swap(below, above); // X_u × (−X_v): the mapped surface's side
-      k.normals(row[r], below, above, u_count_, normal_scale_,
+      k.normals(middle, below, above, u_count_, plane, normal_scale_,
                 b.normals.data()->data() + (r - b.first) * u_count_ * 3);
     }
   }
