@@ -14,8 +14,9 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cctype>
-#include <cmath>
+#include <cstdint>
 #include <string>
 
 namespace pdeface::formats {
@@ -271,6 +272,17 @@ Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& pa
 
 namespace {
 
+// Whether every value is finite: the exponent bits tested as integers, without a branch or a 64-bit
+// comparison (an exponent of all ones plus one carries into the sign bit), so that the loop vectorises
+// even on SSE2 (std::isfinite stops at the first bad value and does not).
+bool all_finite(std::span<const double> values) {
+  constexpr std::uint64_t kExponent = 0x7ff0000000000000, kOne = 0x0010000000000000, kCarry = 1ULL << 63;
+  std::uint64_t infinite = 0;
+  for (const double v : values)
+    infinite |= ((std::bit_cast<std::uint64_t>(v) & kExponent) + kOne) & kCarry;
+  return infinite == 0;
+}
+
 // A .pdef file as binary PLY, written as it is made: the surface's rows a block at a time, each block with
 // its mirror image (rows v and π − v share their product) written at its place in the file, then the
 // triangles; never the whole mesh (at a million vertices 60 MB as a Mesh, 50 MB as PLY, and as many page
@@ -310,8 +322,7 @@ Result<ConvertReport> stream_pdef_as_ply(std::string_view bytes, const std::file
     mesher->rows(blocks);
     for (const pde::GridMesher::RowBlock& b : blocks) {
       if (b.count == 0) continue;
-      const std::span<const double> coordinates(b.positions.data()->data(), 3 * b.positions.size());
-      if (!std::ranges::all_of(coordinates, [](double c) { return std::isfinite(c); })) {
+      if (!all_finite({b.positions.data()->data(), 3 * b.positions.size()})) {
         const auto bad = std::ranges::find_if(b.positions, [](const Vec3& p) { return !p.allFinite(); });
         return make_error(
             ErrorCode::NonFinite, // what validate() says of the mesh (a hostile frame's overflow)
