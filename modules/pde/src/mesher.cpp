@@ -51,9 +51,8 @@ struct Product {
 // loaded is used four times, each cosine for a whole stretch.
 template <std::size_t Lanes>
 [[gnu::always_inline]] inline void products(const Product& p, const RowPair* pairs, std::size_t count) {
-  typedef double Vector __attribute__((vector_size(
-      Lanes *
-      sizeof(double)))); // NOLINT(modernize-use-using): GCC drops the attribute from an alias template
+  // NOLINTNEXTLINE(modernize-use-using): GCC drops the attribute from an alias declaration in a template
+  typedef double Vector __attribute__((vector_size(Lanes * sizeof(double))));
   constexpr std::size_t kRows = 4;
   for (std::size_t group = 0; group < count; group += kRows) {
     const double* row_cosines[kRows];
