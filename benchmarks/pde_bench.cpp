@@ -21,6 +21,7 @@
 #include "pdeface/align/frame.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/pde/mesher.hpp"
 #include "pdeface/pde/surface.hpp"
 #include "pdeface/slice/profiles.hpp"
 
@@ -29,13 +30,6 @@
 #include "bench_support.hpp"
 
 #include <benchmark/benchmark.h>
-
-#if defined(__GLIBC__)
-#include <malloc.h>
-#endif
-#if defined(__unix__)
-#include <sys/resource.h>
-#endif
 
 #include <cstdint>
 #include <cstdio>
@@ -53,55 +47,9 @@ using namespace pdeface::pde;
 
 constexpr std::size_t grid_side = 316;
 
-enum class Memory { Fresh, Reused };
-
-// See the top of the file. Without glibc the allocator is left as it is.
-void pin_allocator(Memory memory) {
-#if defined(__GLIBC__)
-  // Setting either threshold also turns off glibc's adjusting of them to the sizes freed so far.
-  if (memory == Memory::Fresh) {
-    mallopt(M_MMAP_THRESHOLD, 64 * 1024);
-    mallopt(M_TRIM_THRESHOLD, 128 * 1024);
-  } else {
-    mallopt(M_MMAP_THRESHOLD, 32 * 1024 * 1024); // glibc's largest: blocks up to 32 MiB come from the heap
-    mallopt(M_TRIM_THRESHOLD, 1024 * 1024 * 1024);
-  }
-#else
-  (void)memory;
-#endif
-}
-
-// Counts the page faults of the timed loop (the counter "faults", per iteration), where the system says.
-class FaultCounter {
-public:
-  explicit FaultCounter(benchmark::State& state) : state_(state), start_(faults()) {}
-  FaultCounter(const FaultCounter&) = delete;
-  FaultCounter& operator=(const FaultCounter&) = delete;
-  ~FaultCounter() {
-    if (start_ >= 0)
-      state_.counters["faults"] = benchmark::Counter(static_cast<double>(faults() - start_ - excluded_),
-                                                     benchmark::Counter::kAvgIterations);
-  }
-  //! Runs `untimed` (between PauseTiming and ResumeTiming) without counting its faults.
-  template <class F> void exclude(F&& untimed) {
-    const long before = faults();
-    untimed();
-    excluded_ += faults() - before;
-  }
-
-private:
-  static long faults() {
-#if defined(__unix__)
-    rusage usage{};
-    if (getrusage(RUSAGE_SELF, &usage) == 0) return usage.ru_minflt + usage.ru_majflt;
-#endif
-    return -1;
-  }
-
-  benchmark::State& state_;
-  long start_;
-  long excluded_ = 0;
-};
+using bench::FaultCounter;
+using bench::Memory;
+using bench::pin_allocator;
 
 // --- Real curves ------------------------------------------------------------------------------------
 
@@ -345,6 +293,49 @@ void evaluate(benchmark::State& state, Memory memory) {
   for (auto _ : state)
     benchmark::DoNotOptimize(s.evaluate(grid_side, grid_side));
 }
+
+// The mesher's parts on the synthetic face, memory reused: what it holds (the coefficients at every u and
+// the cosines of every v), the rows' positions alone, positions and normals, the triangles, and all of it.
+void mesher_make(benchmark::State& state) {
+  const Surface& s = surface(static_cast<std::size_t>(state.range(0)));
+  pin_allocator(Memory::Reused);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(GridMesher(s, grid_side, grid_side));
+}
+
+void mesher_rows(benchmark::State& state, bool normals) {
+  const GridMesher mesher(surface(static_cast<std::size_t>(state.range(0))), grid_side, grid_side);
+  pin_allocator(Memory::Reused);
+  std::vector<Vec3> positions(mesher.vertex_count());
+  std::vector<Vec3f> n(normals ? mesher.vertex_count() : 0);
+  for (auto _ : state) {
+    mesher.rows(0, grid_side, positions, n);
+    benchmark::DoNotOptimize(positions.data());
+    benchmark::DoNotOptimize(n.data());
+  }
+}
+
+void mesher_triangles(benchmark::State& state) {
+  const GridMesher mesher(surface(30), grid_side, grid_side);
+  std::vector<Triangle> triangles(mesher.triangle_count());
+  for (auto _ : state) {
+    mesher.triangles(0, grid_side - 1, triangles);
+    benchmark::DoNotOptimize(triangles.data());
+  }
+}
+
+void mesher_mesh(benchmark::State& state) {
+  const Surface& s = surface(static_cast<std::size_t>(state.range(0)));
+  pin_allocator(Memory::Reused);
+  for (auto _ : state)
+    benchmark::DoNotOptimize(s.mesh(grid_side, grid_side));
+}
+
+BENCHMARK(mesher_make)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(mesher_rows, positions, false)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(mesher_rows, with_normals, true)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
+BENCHMARK(mesher_triangles)->Unit(benchmark::kMicrosecond);
+BENCHMARK(mesher_mesh)->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
 
 BENCHMARK_CAPTURE(solve, spline, Options{})->Arg(30)->Arg(300)->Unit(benchmark::kMicrosecond);
 BENCHMARK_CAPTURE(solve, paper, Options{.scheme = Scheme::Paper})

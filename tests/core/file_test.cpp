@@ -54,6 +54,49 @@ TEST(File, SeveralFilesAreWrittenAsASet) {
   EXPECT_EQ(dir.entries(), 3U) << "no temporary file may be left";
 }
 
+TEST(File, AnAtomicFileAppearsWholeOnCommitOnly) {
+  test::TempDir dir;
+  const auto path = dir / "out.ply";
+  ASSERT_TRUE(write_file_atomic(path, "old").ok());
+  {
+    Result<AtomicFile> file = AtomicFile::create(path);
+    ASSERT_TRUE(file) << file.error().to_string();
+    ASSERT_TRUE(file->append("new ").ok());
+    ASSERT_TRUE(file->append(std::string_view("pi\0eces", 7)).ok());
+    EXPECT_EQ(slurp(path), "old") << "the path keeps its old file until the commit";
+    EXPECT_EQ(dir.entries(), 2U);
+    AtomicFile moved = std::move(file).value(); // the temporary file goes with the object
+    ASSERT_TRUE(moved.commit().ok());
+    EXPECT_THROW((void)moved.commit(), std::logic_error);
+    EXPECT_THROW((void)moved.append("x"), std::logic_error);
+  }
+  EXPECT_EQ(slurp(path), std::string("new pi\0eces", 11));
+  EXPECT_EQ(dir.entries(), 1U);
+  {
+    Result<AtomicFile> abandoned = AtomicFile::create(path); // an error half-way: never committed
+    ASSERT_TRUE(abandoned);
+    ASSERT_TRUE(abandoned->append("half").ok());
+  }
+  EXPECT_EQ(slurp(path), std::string("new pi\0eces", 11));
+  EXPECT_EQ(dir.entries(), 1U) << "no temporary file may be left";
+  const Result<AtomicFile> missing = AtomicFile::create(dir / "no" / "out.ply");
+  ASSERT_FALSE(missing);
+  EXPECT_EQ(missing.error().code, ErrorCode::Io);
+  EXPECT_EQ(dir.entries(), 1U);
+}
+
+TEST(File, AnAtomicFileCanBeWrittenOutOfOrder) {
+  test::TempDir dir;
+  Result<AtomicFile> file = AtomicFile::create(dir / "out.bin");
+  ASSERT_TRUE(file);
+  ASSERT_TRUE(file->write_at(6, "world").ok());
+  ASSERT_TRUE(file->write_at(0, "hello ").ok());
+  ASSERT_TRUE(file->append("hel").ok()); // appends where the appending left off: the start
+  ASSERT_TRUE(file->commit().ok());
+  EXPECT_EQ(slurp(dir / "out.bin"), "hello world");
+  EXPECT_EQ(dir.entries(), 1U);
+}
+
 TEST(File, ReadErrorsNameTheFile) {
   test::TempDir dir;
   auto missing = read_file(dir / "absent.wrl");

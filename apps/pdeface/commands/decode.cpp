@@ -22,15 +22,12 @@ int run_decode(const DecodeArgs& args) {
     read.surface_v = args.resolution[1];
   }
   Notes notes;
-  Result<formats::LoadedMesh> loaded = formats::read_mesh(args.in, read, &notes);
+  Result<formats::ConvertReport> report = formats::convert(args.in, args.out, read, args.write, &notes);
   print_notes(notes);
-  if (!loaded) return fail(loaded.error());
-  Result<std::size_t> written = formats::write_mesh(loaded->mesh, args.out, args.write, &notes);
-  print_notes(notes);
-  if (!written) return fail(written.error());
+  if (!report) return fail(report.error());
   fmt::print("{} ({} bytes) -> {}: {} vertices, {} triangles, {} bytes, in the scan's frame ({})\n",
-             args.in.string(), loaded->bytes, args.out.string(), loaded->mesh.vertex_count(),
-             loaded->mesh.triangle_count(), *written, to_string(loaded->mesh.units));
+             args.in.string(), report->bytes_in, args.out.string(), report->vertices, report->triangles,
+             report->bytes_out, to_string(report->units));
   return 0;
 }
 

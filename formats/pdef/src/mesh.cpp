@@ -46,38 +46,52 @@ std::array<double, 2> face_size(const Face& face) {
   return {width, top - bottom};
 }
 
-Result<SurfaceMesh> surface_mesh(const pde::Surface& surface, Resolution grid, const Frame& frame,
-                                 std::string_view source) {
+pde::AffineMap scan_map(const Frame& frame) {
+  const Eigen::Matrix3d back = frame.rotation.transpose() / frame.scale;
+  return {back, -(back * frame.translation)};
+}
+
+Result<pde::GridMesher> mesher(const pde::Surface& surface, Resolution grid, const pde::AffineMap& map,
+                               std::string_view source) {
   grid = {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
   if (grid.u > kMaxGridVertices / grid.v || grid.v > kMaxGridVertices / 2)
     return make_error(ErrorCode::InvalidArgument,
                       fmt::format("a {} x {} grid has more than {} vertices: ask for a coarser resolution",
                                   grid.u, grid.v, kMaxGridVertices),
                       std::string(source));
-  SurfaceMesh out{surface.mesh(grid.u, grid.v), {}};
-  out.scan = out.canonical;
-  for (Vec3& p : out.scan.positions)
-    p = frame.to_scan(p);
-  const Eigen::Matrix3f back = frame.rotation.transpose().cast<float>();
-  for (Vec3f& n : out.scan.normals)
-    n = back * n;
-  out.scan.units = frame.scan_units;
-  return out;
+  if (!map.linear.allFinite() || !map.offset.allFinite()) // a file's frame: a tiny scale
+    return make_error(ErrorCode::NonFinite,
+                      "the frame maps the surface beyond the range of double: its scale is too small",
+                      std::string(source));
+  return pde::GridMesher(surface, grid.u, grid.v, {.map = map});
+}
+
+Result<SurfaceMesh> surface_mesh(const pde::Surface& surface, Resolution grid, const Frame& frame,
+                                 std::string_view source) {
+  Result<pde::GridMesher> canonical = mesher(surface, grid, {}, source);
+  if (!canonical) return std::move(canonical).error();
+  Result<pde::GridMesher> scan = mesher(surface, grid, scan_map(frame), source);
+  return SurfaceMesh{canonical->mesh(surface.units()), scan->mesh(frame.scan_units)};
 }
 
 Result<pde::Surface> surface_of(const Face& face, std::string_view source) {
   return pde::Surface::build(face.curves, face.pde, source);
 }
 
+Result<pde::GridMesher> scan_mesher(const Face& face, const pde::Surface& surface,
+                                    std::optional<Resolution> resolution, std::string_view source) {
+  const std::array<double, 2> size = face_size(face);
+  return mesher(surface, grid_for(size[0], size[1], resolution), scan_map(face.frame), source);
+}
+
 Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution, std::string_view source) {
   Result<pde::Surface> surface = surface_of(face, source);
   if (!surface) return std::move(surface).error();
-  const std::array<double, 2> size = face_size(face);
-  Result<SurfaceMesh> mesh =
-      surface_mesh(*surface, grid_for(size[0], size[1], resolution), face.frame, source);
-  if (!mesh) return std::move(mesh).error();
-  mesh->scan.name = face.name;
-  return std::move(mesh->scan);
+  Result<pde::GridMesher> scan = scan_mesher(face, *surface, resolution, source);
+  if (!scan) return std::move(scan).error();
+  Mesh mesh = scan->mesh(face.frame.scan_units);
+  mesh.name = face.name;
+  return mesh;
 }
 
 } // namespace pdeface::pdef

@@ -9,11 +9,18 @@
 #include <Eigen/LU>
 
 #include <array>
+#include <span>
 
 namespace pdeface::pde::detail {
 
 //! Values (derivative order 0..2 in local t) of the basis used for m.
 [[nodiscard]] Eigen::Vector4d mode_basis(double m, double t, int derivative);
+
+//! `mode_basis(local_m(a, f, length), t, 0)` for every frequency f = 0 … out.size() − 1 at once, into
+//! out[f]: the same basis chosen by the same m, its values equal to ~f ulp (the exponentials of f are
+//! powers of those of f = 1, where `mode_basis` takes an exponential each). For evaluating many columns at
+//! one point: the mesher's cost per grid column.
+void mode_basis_powers(double a, double length, double t, std::span<Eigen::Vector4d> out);
 
 //! One condition on a piece: the value (derivative 0) or slope (1) of the solution at local t.
 struct Condition {

@@ -2,7 +2,10 @@
 
 #include "pdeface/pde/surface.hpp"
 
+#include "pdeface/pde/mesher.hpp"
+
 #include "basis.hpp"
+#include "grid_points.hpp"
 #include "mode_solver.hpp"
 
 #include <algorithm>
@@ -103,23 +106,12 @@ Grid Surface::evaluate(std::span<const double> us, std::span<const double> vs, D
   return grid;
 }
 
-namespace {
-std::vector<double> spread(double end, std::size_t count) {
-  if (count < 2) throw std::invalid_argument("pde: a grid needs at least 2 points each way");
-  std::vector<double> values(count);
-  for (std::size_t i = 0; i < count; ++i)
-    values[i] = end * static_cast<double>(i) / static_cast<double>(count - 1);
-  values.back() = end;
-  return values;
-}
-} // namespace
-
 Grid Surface::evaluate(std::size_t u_count, std::size_t v_count) const {
-  return evaluate(spread(u_max(), u_count), spread(std::numbers::pi, v_count));
+  return evaluate(detail::spread(u_max(), u_count), detail::spread(std::numbers::pi, v_count));
 }
 
 Mesh Surface::mesh(std::size_t u_count, std::size_t v_count) const {
-  return triangulate(evaluate(u_count, v_count), units_);
+  return GridMesher(*this, u_count, v_count).mesh(units_);
 }
 
 namespace {

@@ -1,6 +1,7 @@
 #include "pdeface/pde/modes.hpp"
 
 #include "basis.hpp"
+#include "mode_solver.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -71,6 +72,31 @@ namespace detail {
 Eigen::Vector4d mode_basis(double m, double t, int derivative) {
   check_derivative(derivative);
   return m < small_mode_limit ? series_basis(m, t, derivative) : stable_basis(m, t, derivative);
+}
+
+void mode_basis_powers(double a, double length, double t, std::span<Eigen::Vector4d> out) {
+  // m = a·f·length grows with f, so the series basis takes the first frequencies and the stable one the
+  // rest; e^{−f·a·length·t}, e^{−f·a·length·(1−t)} and e^{f·a·length·t} are powers of their f = 1 values.
+  const double step = a * length, s = 1 - t;
+  const double down0 = std::exp(-step * t), down1 = std::exp(-step * s), up0 = std::exp(step * t);
+  double e0 = 1, e1 = 1, up = 1; // the powers for frequency f
+  std::size_t f = 0;
+  for (; f < out.size(); ++f) {
+    const double m = local_m(a, static_cast<double>(f), length);
+    if (!(m < small_mode_limit)) break;
+    const double x = m * t, y = x * x;
+    const double c = (up + e0) / 2, sh = horner(series.shc, y), g = horner(series.g, y); // c = cosh(x)
+    out[f] = {c, t * sh, t * t * sh, t * t * t * g};
+    e0 *= down0;
+    e1 *= down1;
+    up *= up0;
+  }
+  for (; f < out.size(); ++f) {
+    const double m = local_m(a, static_cast<double>(f), length);
+    out[f] = {e0, m * t * e0, e1, m * s * e1};
+    e0 *= down0;
+    e1 *= down1;
+  }
 }
 
 namespace {

@@ -92,9 +92,12 @@ struct ConvertReport {
   std::size_t bytes_out = 0;
   std::size_t vertices = 0;
   std::size_t triangles = 0;
+  Units units = Units::Unknown; //!< the mesh's
 };
 
-//! `read_mesh(in)` then `write_mesh(out)`: what `pdeface convert` does.
+//! `read_mesh(in)` then `write_mesh(out)`: what `pdeface convert` and `pdeface decode` do. A `.pdef` to
+//! binary PLY is streamed instead: the surface made and written a block of rows at a time, never held
+//! whole (the same bytes, the same errors; a million vertices in ~1 MiB of memory).
 [[nodiscard]] Result<ConvertReport> convert(const std::filesystem::path& in, const std::filesystem::path& out,
                                             const ReadOptions& read_options = {},
                                             const WriteOptions& write_options = {}, Notes* notes = nullptr);

@@ -6,6 +6,7 @@
 
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
+#include "pdeface/pde/mesher.hpp"
 #include "pdeface/pde/surface.hpp"
 #include "pdeface/pdef/pdef.hpp"
 
@@ -47,17 +48,31 @@ struct SurfaceMesh {
   Mesh scan;
 };
 
-//! `surface` evaluated on `grid` (at least 2 × 2), triangulated with normals, and mapped back with `frame`
-//! (positions by `Frame::to_scan`, normals turned, units those of the scan). Errors: `InvalidArgument`
-//! (naming `source`) for a grid of more than `kMaxGridVertices`.
+//! `Frame::to_scan` as an affine map, p ↦ (Rᵀ/scale) p − Rᵀt/scale: what a mesher folds into the
+//! surface's coefficients to make its points in the scan's frame directly.
+[[nodiscard]] pde::AffineMap scan_map(const Frame& frame);
+
+//! `surface` on `grid` (at least 2 × 2) as meshes with normals (`pde::GridMesher`): in the canonical frame,
+//! and made directly in the scan's frame by `scan_map(frame)` (positions, and normals from them; units
+//! those of the scan). Errors (naming `source`): `InvalidArgument` for a grid of more than
+//! `kMaxGridVertices`, `NonFinite` for a frame whose map is not finite.
 [[nodiscard]] Result<SurfaceMesh> surface_mesh(const pde::Surface& surface, Resolution grid,
                                                const Frame& frame, std::string_view source = {});
 
 //! The surface a face describes, built with its own PDE options. Errors: those of `pde::Surface::build`.
 [[nodiscard]] Result<pde::Surface> surface_of(const Face& face, std::string_view source = {});
 
+//! What makes `to_mesh`'s mesh: `surface` (the face's, `surface_of`) on `resolution` (default about 1 mm
+//! spacing) in the scan's frame, for writers that stream the mesh row by row instead of holding it.
+//! Errors: `InvalidArgument` for a grid of more than `kMaxGridVertices`, `NonFinite` for a frame whose map
+//! is not finite (a scale so small that 1/scale overflows).
+[[nodiscard]] Result<pde::GridMesher> scan_mesher(const Face& face, const pde::Surface& surface,
+                                                  std::optional<Resolution> resolution = std::nullopt,
+                                                  std::string_view source = {});
+
 //! The face's surface as a mesh in the scan's frame and units, on `resolution` (default about 1 mm
-//! spacing). Errors: those of `surface_of` and `surface_mesh`.
+//! spacing): `scan_mesher(face, surface_of(face), resolution).mesh(face.frame.scan_units)`, named after the
+//! face. Its scan mesh is `surface_mesh`'s to the bit. Errors: those of `surface_of` and `scan_mesher`.
 [[nodiscard]] Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution = std::nullopt,
                                    std::string_view source = {});
 

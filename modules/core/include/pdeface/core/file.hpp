@@ -36,6 +36,39 @@ struct OutputFile {
 //! none of them behind and no temporary file either.
 [[nodiscard]] Result<void> write_files_atomic(std::span<const OutputFile> files);
 
+//! A file written in pieces and published whole, for output too large to hold in memory first: the pieces
+//! go to a temporary file beside the path, and `commit` renames it over the path. Until then readers of
+//! the path see the old file (or none); destroyed uncommitted (an error, an exception), it removes the
+//! temporary file and leaves nothing behind. `write_file_atomic` is this with one piece.
+class AtomicFile {
+public:
+  //! Errors: `Io` when no temporary file can be made beside `path` (a missing folder, no permission).
+  [[nodiscard]] static Result<AtomicFile> create(const std::filesystem::path& path);
+
+  AtomicFile(AtomicFile&& other) noexcept;
+  AtomicFile& operator=(AtomicFile&& other) noexcept;
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  ~AtomicFile();
+
+  //! Appends `bytes`. Errors: `Io` (a full disk); the file is then abandoned.
+  [[nodiscard]] Result<void> append(std::string_view bytes);
+  //! Writes `bytes` at `offset` (the file grows as needed; a gap reads as zeros until written), for output
+  //! made out of order; `append` continues after what it appended last. Errors: as `append`.
+  [[nodiscard]] Result<void> write_at(std::uint64_t offset, std::string_view bytes);
+  //! Closes the temporary file and renames it over the path. Errors: `Io`; nothing is left behind.
+  //! \throw std::logic_error when called twice or after a failed append
+  [[nodiscard]] Result<void> commit();
+
+private:
+  AtomicFile(std::filesystem::path path, std::string temporary, int descriptor);
+  void abandon() noexcept;
+
+  std::filesystem::path path_;
+  std::string temporary_;
+  int descriptor_ = -1;
+};
+
 //! The file name to put in error messages: the path as the user gave it.
 [[nodiscard]] inline std::string source_name(const std::filesystem::path& path) { return path.string(); }
 

@@ -133,7 +133,8 @@ public:
   //! X on u_count × v_count points spread evenly over [0, u_max()] × [0, π].
   //! \throw std::invalid_argument when a count is below 2
   [[nodiscard]] Grid evaluate(std::size_t u_count, std::size_t v_count) const;
-  //! `triangulate(evaluate(u_count, v_count))`, in the curves' units.
+  //! `GridMesher(*this, u_count, v_count).mesh(units())` (mesher.hpp): the points of
+  //! `evaluate(u_count, v_count)` (to rounding), triangulated with normals as `triangulate` does.
   [[nodiscard]] Mesh mesh(std::size_t u_count, std::size_t v_count) const;
 
   [[nodiscard]] Scheme scheme() const { return scheme_; }
@@ -146,6 +147,8 @@ public:
   [[nodiscard]] Units units() const { return units_; }
 
 private:
+  friend class GridMesher; // reads the pieces' coefficients (mesher.hpp)
+
   // One piece of the surface in u (between neighbouring curves for `Spline`, a patch otherwise): every
   // cosine column n has 4 basis coefficients per coordinate, for local m = a·frequency(n)·length.
   struct Piece {
