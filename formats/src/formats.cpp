@@ -71,6 +71,7 @@ std::string_view skip_space(std::string_view s) {
 
 // A `.pdef` file read as a mesh: its surface in the scan's frame and units.
 Result<Mesh> read_pdef(std::string_view bytes, std::string_view source, const ReadOptions& options) {
+  if (options.pdef_max_bytes != 0) bytes = bytes.substr(0, options.pdef_max_bytes);
   Result<pdef::Face> face = pdef::decode(bytes, source);
   if (!face) return std::move(face).error();
   std::optional<pdef::Resolution> grid;
@@ -376,7 +377,11 @@ Result<ConvertReport> convert(const std::filesystem::path& in, const std::filesy
   const Result<Format> from = format_to_read(*bytes, source_name(in), read_options, notes);
   if (!from) return from.error();
   const Format to = write_options.format ? *write_options.format : format_from_path(out).value_or(*from);
-  if (*from == Format::Pdef && to == Format::Ply && !write_options.ascii)
+  if (*from == Format::Pdef && read_options.pdef_max_bytes != 0)
+    bytes->resize(std::min(bytes->size(), read_options.pdef_max_bytes));
+  // A residual layer moves every vertex along the normals of its neighbours' rows: made whole, not streamed.
+  const bool residual = bytes->size() > 4 && static_cast<std::uint8_t>((*bytes)[4]) >= 3;
+  if (*from == Format::Pdef && to == Format::Ply && !write_options.ascii && !residual)
     return stream_pdef_as_ply(*bytes, in, out, read_options);
   ReadOptions read = read_options;
   read.format = *from;

@@ -1,5 +1,7 @@
 #include "pdeface/pdef/mesh.hpp"
 
+#include "pdeface/pde/displacement.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -80,6 +82,8 @@ Result<pde::Surface> surface_of(const Face& face, std::string_view source) {
 
 Result<pde::GridMesher> scan_mesher(const Face& face, const pde::Surface& surface,
                                     std::optional<Resolution> resolution, std::string_view source) {
+  if (!resolution && has_offsets(face)) // the layer's own grid: its offsets exactly, nothing interpolated
+    resolution = Resolution{face.residual->field.width, face.residual->field.height};
   const std::array<double, 2> size = face_size(face);
   return mesher(surface, grid_for(size[0], size[1], resolution), scan_map(face.frame), source);
 }
@@ -90,8 +94,15 @@ Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution, std
   Result<pde::GridMesher> scan = scan_mesher(face, *surface, resolution, source);
   if (!scan) return std::move(scan).error();
   Mesh mesh = scan->mesh(face.frame.scan_units);
+  if (has_offsets(face)) {
+    const std::vector<double> offsets = pde::resample(face.residual->field, scan->u_count(), scan->v_count());
+    pde::displace_grid(mesh.positions, mesh.normals, scan->u_count(), scan->v_count(), offsets,
+                       1.0 / face.frame.scale);
+  }
   mesh.name = face.name;
   return mesh;
 }
+
+bool has_offsets(const Face& face) { return face.residual && !face.residual->field.empty(); }
 
 } // namespace pdeface::pdef

@@ -8,6 +8,7 @@
 #include "frame.hpp"
 #include "heights.hpp"
 #include "lossy.hpp"
+#include "residual_layer.hpp"
 
 #include <fmt/format.h>
 
@@ -231,6 +232,7 @@ std::string write_file(const Face& face, const Quantised* q, const Grid& grid, b
 
 struct Container {
   bool lossless = false;
+  bool residual = false; // version 3: a residual layer follows the checksum
   struct Part {
     std::uint8_t tag;
     std::size_t offset; // of the tag
@@ -248,10 +250,11 @@ Result<Container> read_container(std::string_view bytes, std::string_view source
   if (bytes.substr(0, magic) != kMagic.substr(0, magic))
     return make_error(ErrorCode::BadMagic, "not a .pdef file (it does not start with \"PDEF\")", src,
                       Location::at_byte(0));
-  if (bytes.size() > 4 && static_cast<std::uint8_t>(bytes[4]) != detail::kVersion)
+  const std::uint8_t version = bytes.size() > 4 ? static_cast<std::uint8_t>(bytes[4]) : detail::kVersion;
+  if (version != detail::kVersion && version != detail::kVersionResidual)
     return make_error(ErrorCode::UnsupportedVersion,
-                      fmt::format("version {} (this reader knows version {})",
-                                  static_cast<std::uint8_t>(bytes[4]), detail::kVersion),
+                      fmt::format("version {} (this reader knows versions {} and {})", version,
+                                  detail::kVersion, detail::kVersionResidual),
                       src, Location::at_byte(4));
   const std::uint8_t flags = bytes.size() > 5 ? static_cast<std::uint8_t>(bytes[5]) : 0;
   if ((flags & ~detail::kKnownFlags) != 0)
@@ -281,7 +284,7 @@ Result<Container> read_container(std::string_view bytes, std::string_view source
         ErrorCode::Truncated,
         fmt::format("the file ends after {} of the {} bytes its header states", bytes.size(), length), src,
         Location::at_byte(bytes.size()));
-  if (bytes.size() > length)
+  if (bytes.size() > length && version != detail::kVersionResidual) // version 3: the layer follows
     return make_error(ErrorCode::Malformed,
                       fmt::format("{} bytes after the end of the file its header states ({} bytes)",
                                   bytes.size() - length, length),
@@ -297,6 +300,7 @@ Result<Container> read_container(std::string_view bytes, std::string_view source
         src, Location::at_byte(body_end));
 
   Container out;
+  out.residual = version == detail::kVersionResidual;
   out.lossless = (flags & detail::kFlagLossless) != 0;
   out.length = length;
   Reader r(bytes.substr(detail::kHeaderBytes, body_end - detail::kHeaderBytes), detail::kHeaderBytes, source);
@@ -662,6 +666,11 @@ Result<Face> decode(std::string_view bytes, std::string_view source) {
     }
     if (!r.ok()) return r.error();
   }
+  if (container->residual) {
+    Result<Residual> layer = detail::read_residual(bytes, container->length, source);
+    if (!layer) return std::move(layer).error();
+    face.residual = *std::move(layer);
+  }
   face.storage.frame_float64 = meta.frame64;
   if (!container->lossless) {
     face.storage.step_mm = meta.grid.step_mm();
@@ -677,6 +686,16 @@ Result<std::vector<Section>> sections(std::string_view bytes, std::string_view s
   for (const Container::Part& part : container->parts)
     out.push_back({section_name(part.tag), part.offset, part.content + part.size - part.offset});
   out.push_back({"checksum", container->length - detail::kChecksumBytes, detail::kChecksumBytes});
+  if (container->residual) {
+    Result<Residual> layer = detail::read_residual(bytes, container->length, source);
+    if (!layer) return std::move(layer).error();
+    if (layer->header_bytes > 0) {
+      out.push_back({"residual header", layer->offset, layer->header_bytes});
+      out.push_back({"residual stream", layer->offset + layer->header_bytes, layer->bytes_read});
+    } else {
+      out.push_back({"residual (cut inside its header)", layer->offset, bytes.size() - layer->offset});
+    }
+  }
   return out;
 }
 

@@ -52,6 +52,9 @@ struct ReadOptions {
   //! many across as keep the cells square; {0, 0}: about 1 mm between points).
   std::size_t surface_u = 0;
   std::size_t surface_v = 0;
+  //! `.pdef`: read only the file's first bytes (0: all): a version 3 file cut in its residual layer
+  //! decodes to a coarser surface (docs/pdef-format.md).
+  std::size_t pdef_max_bytes = 0;
 };
 
 struct LoadedMesh {

@@ -62,8 +62,12 @@ struct SurfaceMesh {
 //! The surface a face describes, built with its own PDE options. Errors: those of `pde::Surface::build`.
 [[nodiscard]] Result<pde::Surface> surface_of(const Face& face, std::string_view source = {});
 
+//! Whether the face holds a residual layer with offsets (a version 3 file cut after its layer's header).
+[[nodiscard]] bool has_offsets(const Face& face);
+
 //! What makes `to_mesh`'s mesh: `surface` (the face's, `surface_of`) on `resolution` (default about 1 mm
-//! spacing) in the scan's frame, for writers that stream the mesh row by row instead of holding it.
+//! spacing; a face with a residual layer: the layer's grid) in the scan's frame, for writers that stream the
+//! mesh row by row instead of holding it (the residual's offsets are not applied: see `to_mesh`).
 //! Errors: `InvalidArgument` for a grid of more than `kMaxGridVertices`, `NonFinite` for a frame whose map
 //! is not finite (a scale so small that 1/scale overflows).
 [[nodiscard]] Result<pde::GridMesher> scan_mesher(const Face& face, const pde::Surface& surface,
@@ -71,7 +75,9 @@ struct SurfaceMesh {
                                                   std::string_view source = {});
 
 //! The face's surface as a mesh in the scan's frame and units, on `resolution` (default about 1 mm
-//! spacing): `scan_mesher(face, surface_of(face), resolution).mesh(face.frame.scan_units)`, named after the
+//! spacing; with a residual layer its own grid): `scan_mesher(face, surface_of(face),
+//! resolution).mesh(face.frame.scan_units)`, then each vertex moved along its normal by the layer's offset
+//! there (`pde::displace_grid`; the layer's values at its nodes, bilinear between them), named after the
 //! face. Its scan mesh is `surface_mesh`'s to the bit. Errors: those of `surface_of` and `scan_mesher`.
 [[nodiscard]] Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution = std::nullopt,
                                    std::string_view source = {});

@@ -11,6 +11,7 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/pdef/residual.hpp"
 
 #include <Eigen/Core>
 
@@ -71,6 +72,8 @@ struct Face {
   std::vector<Landmark> landmarks; //!< optional
   std::string name;                //!< optional (UTF-8)
   Storage storage;                 //!< how `decode` found it stored
+  //! A version 3 file's residual layer as decoded (`encode` writes curves only: `with_residual` adds one).
+  std::optional<Residual> residual;
 
   [[nodiscard]] std::size_t curve_count() const { return curves.samples.size(); }
   [[nodiscard]] std::size_t sample_count() const {

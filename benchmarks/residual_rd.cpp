@@ -1,0 +1,117 @@
+// Rate and distortion of the `.pdef` residual layer on real scans, the measurements that chose its design
+// (third_party_notes/residual.md): `residual_rd [--spacing MM] [--step MM] SCAN...` prints, per scan and byte
+// budget, the file's size and the decoded surface's distances to the scan in the face mask (mm), as
+// `pdeface compare` measures them, with the layer's decode time.
+
+#include "pdeface/align/pipeline.hpp"
+#include "pdeface/compare/encode.hpp"
+#include "pdeface/compare/fidelity.hpp"
+#include "pdeface/compare/reconstruct.hpp"
+#include "pdeface/formats/formats.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pdef/residual.hpp"
+#include "pdeface/residual/measure.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+using namespace pdeface;
+
+int main(int argc, char** argv) {
+  double spacing = 0.5, step = pdef::kDefaultResidualStep;
+  std::vector<std::size_t> budgets{1024, 2048, 4096, 8192, 16384, 32768};
+  std::vector<std::string> scans;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--spacing" && i + 1 < argc)
+      spacing = std::atof(argv[++i]);
+    else if (a == "--step" && i + 1 < argc)
+      step = std::atof(argv[++i]);
+    else
+      scans.push_back(a);
+  }
+  for (const std::string& path : scans) {
+    Result<formats::LoadedMesh> loaded = formats::read_mesh(path);
+    if (!loaded) {
+      fmt::print("{}: {}\n", path, loaded.error().to_string());
+      continue;
+    }
+    const Mesh& scan = loaded->mesh;
+    Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, path);
+    if (!alignment) {
+      fmt::print("{}: {}\n", path, alignment.error().to_string());
+      continue;
+    }
+    const compare::CanonicalScan canonical = compare::canonical_scan(scan, *alignment);
+    Result<slice::ProfileSet> profiles = compare::extract_profiles(canonical);
+    Result<compare::FaceYardstick> yardstick = compare::FaceYardstick::make(canonical.mesh, *profiles);
+    compare::EncodeRequest request;
+    request.check.reset();
+    Result<compare::EncodeOutcome> made = compare::encode_aligned(scan, *alignment, request);
+    if (!made || !yardstick) {
+      fmt::print("{}: failed\n", path);
+      continue;
+    }
+    const std::string curves = made->encoded.bytes;
+    Result<pdef::Face> face = pdef::decode(curves);
+    Result<pde::Surface> surface = pdef::surface_of(*face);
+    const residual::GridSize size = residual::grid_for(*surface, spacing);
+    auto t0 = std::chrono::steady_clock::now();
+    const residual::Measured measured = residual::measure(*surface, canonical.mesh, size.width, size.height);
+    auto t1 = std::chrono::steady_clock::now();
+    Result<pdef::CodedResidual> coded = pdef::code_residual(measured.field, {.step_mm = step});
+    auto t2 = std::chrono::steady_clock::now();
+    fmt::print("{}: curves {} B, grid {} x {}, found {:.1f} %, stream {} B at {} mm ({} planes, {} levels); "
+               "measure {:.0f} ms, code {:.0f} ms\n",
+               path, curves.size(), size.width, size.height, 100 * measured.found_share(),
+               coded->stream.size(), step, coded->planes, coded->levels,
+               std::chrono::duration<double, std::milli>(t1 - t0).count(),
+               std::chrono::duration<double, std::milli>(t2 - t1).count());
+    auto report = [&](std::string_view label, const std::string& bytes) {
+      auto s = std::chrono::steady_clock::now();
+      Result<pdef::Face> f = pdef::decode(bytes);
+      if (!f) {
+        fmt::print("  {}: {}\n", label, f.error().to_string());
+        return;
+      }
+      auto m = std::chrono::steady_clock::now();
+      Result<Mesh> mesh = pdef::to_mesh(*f);
+      auto e = std::chrono::steady_clock::now();
+      Result<compare::MeshFidelity> fid = yardstick->measure(align::to_canonical(*mesh, canonical.frame));
+      fmt::print("  {:>8} {:>6} B  to scan mean {:.4f} p95 {:.4f} max {:.3f}  mask mean {:.4f} cov {:.1f} %"
+                 "  parse {:.2f} ms, mesh {:.2f} ms ({} v)\n",
+                 label, bytes.size(), fid->to_scan.mean, fid->to_scan.p95, fid->to_scan.max,
+                 fid->coverage.distance.mean, 100 * fid->coverage.share,
+                 std::chrono::duration<double, std::milli>(m - s).count(),
+                 std::chrono::duration<double, std::milli>(e - m).count(), mesh->vertex_count());
+      if (std::getenv("RD_WORST") != nullptr) { // where the farthest points are
+        const Mesh c = align::to_canonical(*mesh, canonical.frame);
+        std::vector<std::pair<double, std::size_t>> d;
+        for (std::size_t v = 0; v < c.vertex_count(); v += 3)
+          d.emplace_back(yardstick->distance_to_scan(c.positions[v]), v);
+        std::partial_sort(d.begin(), d.begin() + 5, d.end(), std::greater<>());
+        for (int i = 0; i < 5; ++i) {
+          const std::size_t v = d[i].second, w = f->residual ? f->residual->field.width : 1;
+          const std::size_t node = v;
+          fmt::print("    worst {:.3f} at ({:.1f}, {:.1f}, {:.1f}) node ({}, {}) found {}\n", d[i].first,
+                     c.positions[v].x(), c.positions[v].y(), c.positions[v].z(), node % w, node / w,
+                     f->residual && node < measured.found.size() ? int(measured.found[node]) : -1);
+        }
+      }
+    };
+    report("curves", curves);
+    for (const std::size_t budget : budgets) {
+      Result<std::string> file = pdef::with_residual(curves, *coded, budget);
+      if (!file) {
+        fmt::print("  {}: {}\n", budget, file.error().to_string());
+        continue;
+      }
+      report(std::to_string(budget), *file);
+    }
+  }
+}

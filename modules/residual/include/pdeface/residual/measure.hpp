@@ -1,0 +1,56 @@
+#pragma once
+//! \file
+//! How far a scan lies from a PDE surface along the surface's normal, over the surface's whole (u, v)
+//! domain: the image a `.pdef` residual layer codes (docs/pdef-format.md, "The residual layer";
+//! docs/residual.md). Geometry only: the layer's bytes are `formats/pdef`'s.
+
+#include "pdeface/core/mesh.hpp"
+#include "pdeface/pde/displacement.hpp"
+#include "pdeface/pde/surface.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace pdeface::residual {
+
+struct MeasureOptions {
+  //! Offsets beyond this (mm) are not the surface's own: the line along the normal found no scan near it.
+  double max_offset_mm = 6.0;
+  //! A node is measured when the point found along its normal lies within this of the scan (mm).
+  double tolerance_mm = 0.02;
+  //! Where the line along the normal meets no scan but the scan lies within this (mm) of the surface
+  //! point (a hole's rim, the scan's edge), the offset is that of the scan's nearest point along the
+  //! normal; 0: such nodes are filled from their neighbours.
+  double rim_reach_mm = 0.0;
+};
+
+//! The offsets of a scan from a surface on a grid (`pde::Displacement`), and which nodes found the scan.
+struct Measured {
+  pde::Displacement field;         //!< measured offsets; elsewhere filled smoothly (`fill`)
+  std::vector<std::uint8_t> found; //!< 1 where the node's normal line met the scan
+  [[nodiscard]] double found_share() const;
+};
+
+//! A width × height grid over the surface's domain (node (i, k) at u = i·u_max/(width − 1), v =
+//! k·π/(height − 1)): at each node, the signed distance t along the unit normal n from X(u, v) to the scan
+//! (`scan`, a mesh or point cloud in the surface's frame and units) nearest to t = 0, |t| ≤
+//! `max_offset_mm`; nodes whose line meets no scan (holes, beyond the scan's edge) are filled smoothly
+//! from their neighbours (`fill`), so that they cost next to nothing to code.
+//! \throw std::invalid_argument for fewer than 2 nodes either way or an empty scan
+[[nodiscard]] Measured measure(const pde::Surface& surface, const Mesh& scan, std::size_t width,
+                               std::size_t height, const MeasureOptions& options = {});
+
+//! Replaces the values where `found` is 0 by a smooth continuation of the others (a pull-push pyramid
+//! then relaxation towards a harmonic fill); all zero when nothing was found.
+void fill(pde::Displacement& field, const std::vector<std::uint8_t>& found);
+
+//! The grid a layer of about `spacing_mm` between nodes takes on a surface (border curve to border curve
+//! across, the longest curve along; at least 2 × 2).
+struct GridSize {
+  std::size_t width = 2;
+  std::size_t height = 2;
+};
+[[nodiscard]] GridSize grid_for(const pde::Surface& surface, double spacing_mm);
+
+} // namespace pdeface::residual
