@@ -193,6 +193,16 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
         "within {:.4f} mm of the original (at most {} mm)\n",
         out.string(), e.bytes.size(), e.step_mm, e.max_sample_error, e.max_surface_error,
         request.encoding.max_error_mm);
+  if (const std::optional<compare::ResidualOutcome>& r = made->residual) {
+    fmt::print("residual layer: {} bytes ({} x {} grid at {} mm, the scan found at {:.1f} % of it; the whole "
+               "stream {} bytes)\n",
+               r->layer_bytes, r->width, r->height, r->spacing_mm, 100.0 * r->found_share, r->whole_stream);
+    if (r->measured)
+      fmt::print(
+          "measured: the decoded file lies mean {:.4f}, p95 {:.4f}, max {:.3f} mm from the scan in the "
+          "face mask\n",
+          r->measured->to_scan.mean, r->measured->to_scan.p95, r->measured->to_scan.max);
+  }
   if (made->check) print_check(*made->check);
   print_holes_and_gaps(p);
   return 0;

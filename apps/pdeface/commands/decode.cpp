@@ -12,6 +12,7 @@ struct DecodeArgs {
   fs::path out;
   std::vector<std::size_t> resolution; // {v} or {u, v}
   formats::WriteOptions write;
+  std::size_t max_bytes = 0;
 };
 
 int run_decode(const DecodeArgs& args) {
@@ -21,6 +22,7 @@ int run_decode(const DecodeArgs& args) {
     read.surface_u = args.resolution[0];
     read.surface_v = args.resolution[1];
   }
+  read.pdef_max_bytes = args.max_bytes;
   Notes notes;
   Result<formats::ConvertReport> report = formats::convert(args.in, args.out, read, args.write, &notes);
   print_notes(notes);
@@ -41,6 +43,10 @@ void decode_command(CLI::App& app, int& status) {
   cmd->add_option("-o,--output", args->out, "Mesh to write (.glb .gltf .obj .ply .wrl .drc .off .stl)")
       ->required();
   add_resolution(cmd, args->resolution);
+  cmd->add_option("--max-bytes", args->max_bytes,
+                  "Read only the file's first N bytes: a file with a residual layer cut in it decodes to a "
+                  "coarser surface")
+      ->check(CLI::PositiveNumber);
   add_write_options(cmd, args->write);
   cmd->callback([args, &status] { status = run_decode(*args); });
 }

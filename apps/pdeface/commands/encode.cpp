@@ -16,6 +16,10 @@ struct EncodeArgs {
   bool store_landmarks = false;
   std::string name;
   bool force = false;
+  std::optional<std::size_t> size;
+  std::optional<double> target_error;
+  std::string target_measure = "p95";
+  std::optional<double> residual_spacing;
 };
 
 int run_encode(const EncodeArgs& args) {
@@ -25,6 +29,11 @@ int run_encode(const EncodeArgs& args) {
                                  .profiles = args.curves.profile_options(),
                                  .pde = args.surface.pde_options(),
                                  .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
+                                 .residual = {.size_bytes = args.size,
+                                              .target_error_mm = args.target_error,
+                                              .target_measure = *value_named<compare::TargetMeasure>(
+                                                  compare::kTargetMeasureNames, args.target_measure),
+                                              .spacing_mm = args.residual_spacing},
                                  .store_landmarks = args.store_landmarks,
                                  .name = args.name,
                                  .source = args.in.string(),
@@ -49,6 +58,24 @@ void encode_command(CLI::App& app, int& status) {
   cmd->add_flag("--lossless", args->lossless, "Store the curves exactly (float64, compressed)");
   cmd->add_flag("--store-landmarks", args->store_landmarks, "Also store the landmarks (canonical frame)");
   cmd->add_option("--name", args->name, "A name to store in the file");
+  CLI::Option* size =
+      cmd->add_option("--size", args->size,
+                      "Add a residual layer (.pdef version 3): the whole file at most this many bytes, the "
+                      "best error")
+          ->check(CLI::Range(std::size_t{64}, std::size_t{1} << 26));
+  CLI::Option* target =
+      cmd->add_option(
+             "--target-error", args->target_error,
+             "Add a residual layer: the fewest bytes whose decoded surface lies within this distance "
+             "(mm, --target-measure) of the scan in the face mask, measured")
+          ->check(CLI::Range(0.0001, 10.0));
+  size->excludes(target);
+  cmd->add_option("--target-measure", args->target_measure, "What --target-error bounds: mean, p95 or max")
+      ->check(CLI::IsMember(all_names<compare::TargetMeasure>(compare::kTargetMeasureNames)))
+      ->capture_default_str();
+  cmd->add_option("--residual-spacing", args->residual_spacing,
+                  "The residual grid's spacing (mm; default by size: 1, 0.7 or 0.5)")
+      ->check(CLI::Range(0.2, 5.0));
   args->curves.add_to(cmd);
   args->surface.add_to(cmd);
   add_force(cmd, args->force);

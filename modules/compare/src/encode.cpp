@@ -51,6 +51,11 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
   Result<pdef::Encoded> encoded = pdef::encode(out.face, request.encoding);
   if (!encoded) return named(std::move(encoded).error());
   out.encoded = *std::move(encoded);
+  if (request.residual.wanted()) {
+    Result<ResidualOutcome> layer = add_residual(canonical, out, request.residual, request.source);
+    if (!layer) return named(std::move(layer).error());
+    out.residual = *std::move(layer);
+  }
   if (!request.check) return out;
   // What a reader gets: the file's bytes decoded and meshed, back in the canonical frame.
   Result<pdef::Face> decoded = pdef::decode(out.encoded.bytes, request.source);

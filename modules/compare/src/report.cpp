@@ -187,6 +187,18 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
                },
            .keep_mesh = !lossless && std::abs(ratio - options.heat_ratio) < 1e-9});
     }
+  for (const std::size_t budget : options.pde_budgets)
+    tasks.push_back({.variant = {.method = Method::Pde,
+                                 .name = fmt::format("pde {:g} % + residual {} B",
+                                                     100.0 * options.pde_budget_ratio, budget),
+                                 .extension = ".pdef",
+                                 .budget = budget,
+                                 .ratio = options.pde_budget_ratio,
+                                 .lossless = false},
+                     .make = [&, budget] {
+                       return detail::encode_pde(scan, *alignment, options.pde_budget_ratio, false,
+                                                 options.scheme, name, budget);
+                     }});
   run(tasks);
 
   // The raw files decode to the same float32 geometry: measured once, on the first decoded, and each
@@ -214,7 +226,7 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   std::string heat_label; // decimate + Draco at the size of the PDE variant shown as a heat map
   if (options.budgets_at_pde)
     for (const Task& t : tasks)
-      if (t.variant.method == Method::Pde && t.variant.bytes > 0) {
+      if (t.variant.method == Method::Pde && t.variant.bytes > 0 && t.variant.budget == 0) {
         budgets.emplace_back(t.variant.bytes, "decimate+draco = " + t.variant.name);
         if (t.keep_mesh) heat_label = budgets.back().second;
       }

@@ -207,8 +207,9 @@ Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget, c
 }
 
 Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio, bool lossless,
-                           pde::Scheme scheme, std::string_view source) {
+                           pde::Scheme scheme, std::string_view source, std::optional<std::size_t> size) {
   EncodeRequest request;
+  request.residual.size_bytes = size;
   request.profiles.ratio = ratio;
   request.encoding.lossless = lossless;
   request.source = source;

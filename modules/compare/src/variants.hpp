@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -60,7 +61,9 @@ struct Decimated {
 //! The `.pdef` file of the aligned scan sliced at `ratio` (`encode_aligned`: lossy within the default error,
 //! or lossless; `scheme`), and what a reader makes of its bytes: `pdef::decode`, then the surface solved and
 //! meshed in the scan's frame at the default grid (`pdef::to_mesh`). Encoding and decoding timed apart.
+//! With `size`: a residual layer after the curves, the file at most `size` bytes (`pdeface encode --size`).
 [[nodiscard]] Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio,
-                                         bool lossless, pde::Scheme scheme, std::string_view source);
+                                         bool lossless, pde::Scheme scheme, std::string_view source,
+                                         std::optional<std::size_t> size = std::nullopt);
 
 } // namespace pdeface::compare::detail

@@ -7,10 +7,12 @@
 #include "pdeface/compare/fidelity.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/mesh.hpp"
+#include "pdeface/core/names.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/pdef/pdef.hpp"
 #include "pdeface/slice/profiles.hpp"
 
+#include <array>
 #include <optional>
 #include <string>
 
@@ -25,12 +27,41 @@ namespace pdeface::compare {
 [[nodiscard]] pdef::Face to_face(const slice::ProfileSet& profiles, const pde::Surface& surface,
                                  const pde::Options& options);
 
+//! Which distance a target error bounds: the decoded surface → the scan in the face mask (mm), as
+//! `pdeface compare` measures it (`MeshFidelity::to_scan`).
+enum class TargetMeasure { Mean, P95, Max };
+inline constexpr std::array<NamedValue<TargetMeasure>, 3> kTargetMeasureNames{
+    {{"mean", TargetMeasure::Mean}, {"p95", TargetMeasure::P95}, {"max", TargetMeasure::Max}}};
+
+//! A residual layer after the curves (`.pdef` version 3, docs/pdef-format.md): the file cut to a size, or
+//! the fewest bytes that meet an error measured on the decoded file.
+struct ResidualRequest {
+  std::optional<std::size_t> size_bytes; //!< the whole file at most this many bytes, the best error
+  std::optional<double> target_error_mm; //!< or the fewest bytes whose decoded surface meets this
+  TargetMeasure target_measure = TargetMeasure::P95;
+  //! The grid's spacing (mm); default by the layer's bytes: 1 mm below 6 KB, 0.7 mm below 12 KB, 0.5 mm
+  //! above (docs/compare.md, "The residual layer"); 0.7 mm for a target error.
+  std::optional<double> spacing_mm;
+  [[nodiscard]] bool wanted() const { return size_bytes || target_error_mm; }
+};
+
+//! What the layer took and, for a target, what the file was measured at.
+struct ResidualOutcome {
+  double spacing_mm = 0.0;
+  std::size_t width = 0, height = 0;
+  double found_share = 0.0;             //!< of the grid's nodes whose normal met the scan
+  std::size_t layer_bytes = 0;          //!< header and stream in the file
+  std::size_t whole_stream = 0;         //!< the stream coded to its finest step
+  std::optional<MeshFidelity> measured; //!< target: the file's decoded surface measured on the scan
+};
+
 struct EncodeRequest {
   align::LandmarkSource landmarks;
   slice::ProfileOptions profiles;
   //! As `reconstruct` builds the surface (physical spacing), so that a lossless file decodes to its mesh.
   pde::Options pde{.spacing = pde::Spacing::Physical};
   pdef::EncodeOptions encoding;
+  ResidualRequest residual;     //!< none by default: the curves alone (version 2, ~1 KB)
   bool store_landmarks = false; //!< also store the landmarks (canonical frame)
   std::string name;             //!< stored when not empty
   std::string source;           //!< the scan's name, for errors
@@ -45,8 +76,15 @@ struct EncodeOutcome {
   slice::ProfileSet profiles;
   pdef::Face face;
   pdef::Encoded encoded;
-  std::optional<SelfCheck> check; //!< when the request asked for it
+  std::optional<SelfCheck> check;          //!< when the request asked for it
+  std::optional<ResidualOutcome> residual; //!< when the request asked for a layer
 };
+
+//! The residual layer added to `outcome.encoded.bytes` (a curve-only file of `scan`, canonical) as
+//! `request` asks (`encode_aligned` calls it). Errors: `InvalidArgument` for a size below the curves'
+//! bytes, `SelfCheck` for a target the whole layer does not meet.
+[[nodiscard]] Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& outcome,
+                                                   const ResidualRequest& request, std::string_view source);
 
 //! `pdeface encode`: aligned (landmarks detected or from a file), then `encode_aligned`. Errors: those of
 //! each stage, naming `request.source`, and `SelfCheck` when the decoded file is off (unless `force`).

@@ -30,7 +30,7 @@ struct CompareOptions {
   std::vector<int> draco_bits{8, 9, 10, 11, 12, 13, 14, 15, 16};
   int draco_level = 7; //!< Draco compression level for the Draco and decimate + Draco variants (0–10)
   //! Decimate + Draco: byte budgets (and one at each `.pdef` variant's size when `budgets_at_pde`).
-  std::vector<std::size_t> budgets{1024, 2048, 4096, 8192, 16384};
+  std::vector<std::size_t> budgets{1024, 2048, 4096, 8192, 16384, 32768};
   bool budgets_at_pde = true;
   //! The quantisation bits tried for each budget; the one with the least error is kept.
   std::vector<int> decimate_bits{8, 9, 10, 11, 12, 13, 14};
@@ -41,6 +41,10 @@ struct CompareOptions {
   std::vector<double> ratios{0.05, 0.10, 0.20, 0.30, 0.60};
   bool pde_lossy = true;
   bool pde_lossless = true;
+  //! PDE with a residual layer (`.pdef` version 3, `pdeface encode --size`): the curves at
+  //! `pde_budget_ratio`, the file at each of these sizes (the decimate + Draco budgets by default).
+  std::vector<std::size_t> pde_budgets{1024, 2048, 4096, 8192, 16384, 32768};
+  double pde_budget_ratio = 0.10;
   pde::Scheme scheme = pde::Scheme::Spline;
   int gzip_level = 6; //!< zlib level of the gzipped raw files (gzip's default)
   //! Compress only the face (`align::crop_face`: the face's height, the cheeks, no ears, neck, shoulders or
@@ -67,7 +71,7 @@ struct Variant {
   std::string name;          //!< "ply", "ply.gz", "draco 11 bits", "decimate+draco 2048 B", "pde 10 % lossy"
   std::string extension;     //!< of its file: ".ply", ".ply.gz", ".drc", ".pdef"
   int bits = 0;              //!< Draco and decimate + Draco: position quantisation bits
-  std::size_t budget = 0;    //!< decimate + Draco: the byte budget
+  std::size_t budget = 0;    //!< decimate + Draco, PDE with a residual layer: the byte budget
   double ratio = 0.0;        //!< PDE: the sampling ratio
   bool lossless = true;      //!< raw (float32) and lossless PDE
   std::size_t bytes = 0;     //!< of the encoded file
