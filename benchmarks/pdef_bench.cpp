@@ -24,7 +24,9 @@
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>
 
+#include <array>
 #include <cstdio>
+#include <map>
 
 namespace {
 
@@ -33,11 +35,13 @@ using bench::FaultCounter;
 using bench::Memory;
 
 constexpr pdef::Resolution kGrid{316, 316};
+constexpr std::array<std::size_t, 4> kResidualSizes{2048, 8192, 16384, 32768};
 
 struct Corpus {
   std::string origin;
-  std::string lossy, lossless; // .pdef at 10 %
-  std::string draco;           // the scan at 11 bits
+  std::string lossy, lossless;                 // .pdef at 10 %
+  std::string draco;                           // the scan at 11 bits
+  std::map<std::size_t, std::string> residual; // .pdef at 10 % with a residual layer, by file size
   std::size_t scan_vertices = 0;
 };
 
@@ -57,6 +61,11 @@ const Corpus& corpus() {
     compare::EncodeRequest request;
     request.source = out.origin;
     out.lossy = compare::encode_request(scan, request).value().encoded.bytes;
+    for (const std::size_t size : kResidualSizes) {
+      request.residual.size_bytes = size;
+      out.residual[size] = compare::encode_request(scan, request).value().encoded.bytes;
+    }
+    request.residual = {};
     request.encoding.lossless = true;
     out.lossless = compare::encode_request(scan, request).value().encoded.bytes;
     out.draco = pdeface::draco::write(scan, {.position_bits = 11, .level = 7}).value();
@@ -101,6 +110,35 @@ void pdef_to_mesh(benchmark::State& state, bool lossless, Memory memory, std::si
   }
   state.counters["file_bytes"] = static_cast<double>(bytes.size());
   state.counters["vertices"] = static_cast<double>(vertices);
+}
+
+// A .pdef with a residual layer of `size` bytes to the same 316 x 316 mesh (warm): what the layer adds to
+// pdef_to_mesh/lossy_warm is its stream decoded, the wavelet inverted, resampled onto the grid, every
+// vertex moved along its normal and the normals made again.
+void pdef_residual_to_mesh(benchmark::State& state) {
+  const std::string& bytes =
+      corpus_with(Memory::Reused).residual.at(static_cast<std::size_t>(state.range(0)));
+  std::size_t vertices = 0;
+  for (auto _ : state) {
+    Result<Mesh> mesh = pdef_mesh(bytes, 0);
+    if (!mesh) return state.SkipWithError(mesh.error().to_string().c_str());
+    vertices = mesh->vertex_count();
+    benchmark::DoNotOptimize(mesh);
+  }
+  state.counters["file_bytes"] = static_cast<double>(bytes.size());
+  state.counters["vertices"] = static_cast<double>(vertices);
+}
+
+// The residual layer's bytes to its offsets only (`pdef::decode` of the file less that of the curves).
+void pdef_residual_decode(benchmark::State& state) {
+  const std::string& bytes =
+      corpus_with(Memory::Reused).residual.at(static_cast<std::size_t>(state.range(0)));
+  for (auto _ : state) {
+    Result<pdef::Face> face = pdef::decode(bytes, "face.pdef");
+    if (!face) return state.SkipWithError(face.error().to_string().c_str());
+    benchmark::DoNotOptimize(face);
+  }
+  state.counters["file_bytes"] = static_cast<double>(bytes.size());
 }
 
 // The bytes to the document only (no surface).
@@ -157,6 +195,8 @@ BENCHMARK_CAPTURE(libdraco_decode, fresh, Memory::Fresh)->Unit(benchmark::kMilli
 BENCHMARK_CAPTURE(pdef_to_mesh, lossless_warm, true, Memory::Reused, 0)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(pdef_to_mesh, lossy_warm_sse2, false, Memory::Reused, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(pdef_decode)->Unit(benchmark::kMicrosecond);
+BENCHMARK(pdef_residual_to_mesh)->Arg(2048)->Arg(8192)->Arg(16384)->Arg(32768)->Unit(benchmark::kMillisecond);
+BENCHMARK(pdef_residual_decode)->Arg(2048)->Arg(8192)->Arg(16384)->Arg(32768)->Unit(benchmark::kMillisecond);
 BENCHMARK(draco_to_mesh)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

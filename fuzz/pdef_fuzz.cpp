@@ -29,6 +29,9 @@ void one(std::string_view bytes) {
   if (!pdef::sections(bytes, "fuzz")) throw std::logic_error("sections() refuses what decode() read");
   // A surface and a small mesh (may be refused: a hostile scheme or smoothing; must not crash).
   if (face->curve_count() * face->sample_count() <= 4096) (void)pdef::to_mesh(*face, pdef::Resolution{9, 9});
+  if (face->residual && !face->residual->field.empty() &&
+      face->residual->field.values.size() != face->residual->field.width * face->residual->field.height)
+    throw std::logic_error("a residual layer's offsets do not fill its grid");
   // Encoding it again: on its own grid (an error its grid satisfies: no surface search), a file that
   // decodes to the same values.
   const pdeface::Result<pdef::Encoded> again = pdef::encode(
@@ -54,6 +57,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (int i = 0; i < 4; ++i)
       repaired[size - 4 + static_cast<std::size_t>(i)] = static_cast<char>(crc >> (8 * i));
     one(repaired);
+  }
+  // A version 3 file: the curves' checksum (at the length the header states) repaired, so that mutations
+  // of the residual layer after it reach its parser and the bit-plane decoder.
+  if (size >= 18 && static_cast<std::uint8_t>(bytes[4]) == 3) {
+    std::uint32_t length = 0;
+    for (int i = 0; i < 4; ++i)
+      length |= std::uint32_t{static_cast<std::uint8_t>(bytes[6 + static_cast<std::size_t>(i)])} << (8 * i);
+    if (length >= 14 && length <= size) {
+      std::string repaired(bytes);
+      const std::uint32_t crc = pdef::checksum(std::string_view(repaired).substr(0, length - 4));
+      for (int i = 0; i < 4; ++i)
+        repaired[length - 4 + static_cast<std::size_t>(i)] = static_cast<char>(crc >> (8 * i));
+      one(repaired);
+    }
   }
   return 0;
 }

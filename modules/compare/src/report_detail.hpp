@@ -37,6 +37,10 @@ struct Table {
 //! The summary across scans (mean ± sd per variant) and one scan's rows.
 [[nodiscard]] Table summary_table(const Report& report);
 [[nodiscard]] Table scan_table(const ScanReport& scan);
+//! The `.pdef` with a residual layer against decimate + Draco at each byte budget (mesh → scan mean, p95,
+//! max): one scan's, and across scans (the median scan and the worst).
+[[nodiscard]] Table rd_scan_table(const ScanReport& scan);
+[[nodiscard]] Table rd_summary_table(const Report& report);
 
 //! A file-name-safe form of `text`: letters and digits, runs of anything else as one '-'.
 [[nodiscard]] std::string slug(std::string_view text);

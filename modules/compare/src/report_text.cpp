@@ -246,6 +246,10 @@ std::string report_markdown(const Report& report) {
                      report.scans.size() == 1 ? "" : "s", report.failed(), report.seconds);
   out += detail::method_notes(report);
   out += "\n## Summary across scans (mean ± sd)\n\n" + detail::markdown(detail::summary_table(report));
+  if (const detail::Table rd = detail::rd_summary_table(report); !rd.rows.empty())
+    out += "\n## Rate and distortion: `.pdef` with a residual layer against decimate + Draco (mesh → scan, "
+           "mm)\n\n" +
+           detail::markdown(rd);
   for (const ScanReport& scan : report.scans) {
     out += "\n## " + detail::scan_heading(scan) + "\n\n";
     if (!scan.failure.empty()) {
@@ -254,6 +258,8 @@ std::string report_markdown(const Report& report) {
     }
     out += fmt::format("Raw binary PLY: {} bytes.\n\n", scan.ply_bytes) +
            detail::markdown(detail::scan_table(scan));
+    if (const detail::Table rd = detail::rd_scan_table(scan); !rd.rows.empty())
+      out += "\nRate and distortion (mesh → scan, mm):\n\n" + detail::markdown(rd);
     if (!scan.heat_maps.empty()) {
       out += "\nHeat maps (GLB, canonical frame, mm):";
       for (const HeatMap& h : scan.heat_maps)

@@ -126,6 +126,37 @@ TEST(PdefResidual, EveryPrefixOfTheLayerDecodesAndImproves) {
   EXPECT_GT(improved, 100u);
 }
 
+// tests/data/pdef/sample_residual.pdef: the built-in sample face, `pdeface encode --size 1600` (777 bytes
+// of curves, 823 of layer). Cut at every byte of its layer, it decodes to a surface that comes closer to
+// the whole file's as bytes are added.
+TEST(PdefResidual, EveryPrefixOfAFileDecodesToASurfaceThatImproves) {
+  const std::string file = test::slurp(test::fixtures() / "pdef" / "sample_residual.pdef");
+  const pdef::Face whole = pdef::decode(file, "sample_residual.pdef").value();
+  ASSERT_TRUE(whole.residual && whole.residual->complete);
+  const pdef::Resolution grid{40, 50};
+  const Mesh target = pdef::to_mesh(whole, grid).value();
+  auto distance = [&](const Mesh& m) {
+    double s = 0;
+    for (std::size_t v = 0; v < m.vertex_count(); ++v)
+      s += (m.positions[v] - target.positions[v]).squaredNorm();
+    return std::sqrt(s / static_cast<double>(m.vertex_count()));
+  };
+  double best =
+      distance(pdef::to_mesh(pdef::decode(file.substr(0, whole.residual->offset)).value(), grid).value());
+  const double curves_only = best;
+  for (std::size_t n = whole.residual->offset; n <= file.size(); ++n) {
+    const Result<pdef::Face> face = pdef::decode(std::string_view(file).substr(0, n), "cut");
+    ASSERT_TRUE(face) << n << ": " << face.error().to_string();
+    const Result<Mesh> mesh = pdef::to_mesh(*face, grid);
+    ASSERT_TRUE(mesh) << n;
+    const double d = distance(*mesh);
+    EXPECT_LE(d, best * 1.05 + 1e-9) << n;
+    best = std::min(best, d);
+  }
+  EXPECT_EQ(best, 0.0);
+  EXPECT_GT(curves_only, 0.01); // the layer moves the surface (scan units: mm)
+}
+
 TEST(PdefResidual, TheMeshMovesAlongItsNormalsByTheOffsets) {
   pdef::Face face = test::synthetic_face();
   const std::string curves = pdef::encode(face).value().bytes;
