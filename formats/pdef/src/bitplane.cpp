@@ -19,14 +19,12 @@ constexpr std::uint32_t kTop = 1u << 24;
 constexpr std::size_t kBlock = 16; // coefficients a side of a block whose significance is coded at once
 
 // The contexts (each an adaptive probability of a 0).
-enum Context : std::size_t {
-  kSignificance = 0, // + 4 · class + min(significant neighbours, 3): 12
-  kBlockActive = 12, // + 2 · class + (the block left or above is active): 6
-  kSign = 18,
-  kFirstRefinement = 19,
-  kRefinement = 20,
-  kContexts = 21,
-};
+constexpr std::size_t kSignificance = 0; // + 4 · kind + min(significant neighbours, 3): 12
+constexpr std::size_t kBlockActive = 12; // + 2 · kind + (the block left or above is active): 6
+constexpr std::size_t kSign = 18;
+constexpr std::size_t kFirstRefinement = 19;
+constexpr std::size_t kRefinement = 20;
+constexpr std::size_t kContexts = 21;
 
 class RangeEncoder {
 public:

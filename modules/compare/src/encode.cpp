@@ -62,9 +62,10 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
   if (!decoded) return named(std::move(decoded).error());
   Result<Mesh> mesh = pdef::to_mesh(*decoded, std::nullopt, request.source);
   if (!mesh) return named(std::move(mesh).error());
-  Result<SelfCheck> check =
-      checked(canonical.mesh, out.profiles, align::to_canonical(*mesh, out.alignment.frame), *request.check,
-              request.force, request.source);
+  Result<SelfCheck> check = checked(
+      canonical.mesh, out.profiles, align::to_canonical(*mesh, out.alignment.frame),
+      out.residual ? with_scans_folds(*request.check, canonical.mesh, out.profiles.mask) : *request.check,
+      request.force, request.source);
   if (!check) return check.error();
   out.check = *std::move(check);
   return out;

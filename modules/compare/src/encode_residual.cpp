@@ -30,6 +30,11 @@ double statistic(const MeshFidelity& f, TargetMeasure measure) {
 
 } // namespace
 
+CheckLimits with_scans_folds(CheckLimits limits, const Mesh& scan, const slice::FaceMask& mask) {
+  limits.max_facing_away += facing_away(scan, mask);
+  return limits;
+}
+
 Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& outcome,
                                      const ResidualRequest& request, std::string_view source) {
   const std::string curves = outcome.encoded.bytes;
@@ -47,7 +52,11 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
   if (!surface) return std::move(surface).error();
   ResidualOutcome out;
   out.spacing_mm = spacing_for(request, curves.size());
-  const residual::GridSize grid = residual::grid_for(*surface, out.spacing_mm);
+  residual::GridSize grid = residual::grid_for(*surface, out.spacing_mm);
+  while (grid.width * grid.height > pdef::kFreeResidualNodes) { // a bust's long, steep sides: coarser
+    out.spacing_mm *= 1.1;
+    grid = residual::grid_for(*surface, out.spacing_mm);
+  }
   const residual::Measured measured = residual::measure(*surface, scan.mesh, grid.width, grid.height);
   Result<pdef::CodedResidual> coded = pdef::code_residual(measured.field);
   if (!coded) return std::move(coded).error();

@@ -4,6 +4,7 @@
 
 #include "pdeface/align/crop.hpp"
 #include "pdeface/align/frame.hpp"
+#include "pdeface/compare/encode.hpp"
 #include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
@@ -133,7 +134,11 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
       Result<MeshFidelity> f = yardstick.measure(mesh);
       if (!f) {
         task.variant.failure = f.error().message;
-      } else if (const SelfCheck check = self_check(*f, facing_away(mesh, yardstick.mask()), options.check);
+      } else if (const SelfCheck check =
+                     self_check(*f, facing_away(mesh, yardstick.mask()),
+                                task.variant.budget > 0 && task.variant.method == Method::Pde
+                                    ? with_scans_folds(options.check, canonical.mesh, yardstick.mask())
+                                    : options.check);
                  task.variant.method == Method::Pde && !check.passed()) {
         // What `pdeface encode` would refuse to write is a failed row, never a silent number.
         task.variant.failure = "self-check failed: " + check.summary();

@@ -80,6 +80,11 @@ struct EncodeOutcome {
   std::optional<ResidualOutcome> residual; //!< when the request asked for a layer
 };
 
+//! `limits` for a file with a residual layer, which follows the scan into its own folds (under the nose, the
+//! nostrils, eye sockets): the share of area facing away that the scan itself has in `mask` is allowed on
+//! top of `limits.max_facing_away`.
+[[nodiscard]] CheckLimits with_scans_folds(CheckLimits limits, const Mesh& scan, const slice::FaceMask& mask);
+
 //! The residual layer added to `outcome.encoded.bytes` (a curve-only file of `scan`, canonical) as
 //! `request` asks (`encode_aligned` calls it). Errors: `InvalidArgument` for a size below the curves'
 //! bytes, `SelfCheck` for a target the whole layer does not meet.
