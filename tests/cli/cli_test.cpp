@@ -401,8 +401,9 @@ TEST_F(Cli, CompareBatchReportsABadScanAndCompletesTheOthers) {
   for (int i = 0; i < 300; ++i)
     soup << "f " << i % 100 + 1 << " " << (i * 37 + 11) % 100 + 1 << " " << (i * 53 + 29) % 100 + 1 << "\n";
   soup.close();
-  const Outcome r = run({"compare", path("scans"), "--out", path("rep"), "--draco-bits", "11", "--budgets",
-                         "2048", "--ratios", "0.1", "--lossy-only", "--decimate-bits", "10,11,12"});
+  const Outcome r =
+      run({"compare", path("scans"), "--out", path("rep"), "--draco-bits", "11", "--budgets", "2048",
+           "--ratios", "0.1", "--lossy-only", "--decimate-bits", "10,11,12", "--pdef-sizes", "2048"});
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("error: " + path("scans/broken.ply")), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("error: " + path("scans/soup.obj")), std::string::npos) << r.err;
@@ -414,7 +415,9 @@ TEST_F(Cli, CompareBatchReportsABadScanAndCompletesTheOthers) {
   EXPECT_EQ(md.find("notes.txt"), std::string::npos) << md;
   const std::string csv = slurp(work_ / "rep" / "report.csv");
   EXPECT_NE(md.find("## soup.obj: failed"), std::string::npos) << md;
-  EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1) + 2U) << csv; // 2 scans x rows, the failed scans' lines
+  EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1 + 1) + 2U) << csv; // 2 scans x rows, the failed scans' lines
+  EXPECT_NE(md.find("pde 10 % + residual 2048 B"), std::string::npos) << md;
+  EXPECT_NE(md.find("Rate and distortion"), std::string::npos) << md;
 
   EXPECT_EQ(run({"compare", "--ratios", "0.8"}).exit_code, 2);
   EXPECT_EQ(run({"compare", path("absent.ply")}).exit_code, 2);

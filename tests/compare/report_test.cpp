@@ -32,6 +32,7 @@ CompareOptions sample_options() {
   o.draco_bits = {8, 11, 14};
   o.budgets = {2048, 4096};
   o.ratios = {0.1};
+  o.pde_budgets = {2048};
   o.keep_bytes = true;
   return o;
 }
@@ -64,8 +65,8 @@ TEST(Compare, SampleFaceHasEveryKindOfVariantMeasured) {
   ASSERT_TRUE(s.failure.empty()) << s.failure;
   EXPECT_EQ(s.name, "sample face");
   EXPECT_EQ(s.units, Units::Millimetres);
-  // 4 raw + 4 gzip + 3 Draco + 2 budgets + 2 at the PDE sizes + 2 PDE.
-  EXPECT_EQ(s.variants.size(), 17U);
+  // 4 raw + 4 gzip + 3 Draco + 2 budgets + 2 at the PDE sizes + 2 PDE + 1 PDE with a residual layer.
+  EXPECT_EQ(s.variants.size(), 18U);
   for (const Variant& v : s.variants) {
     SCOPED_TRACE(v.name);
     ASSERT_TRUE(v.fidelity) << v.failure;
@@ -160,6 +161,24 @@ TEST(Compare, BytesInTheReportAreTheSizesOfTheFilesWritten) {
 // A PDE row is the `.pdef` file `pdeface encode` writes for the scan (its bytes, byte for byte), measured
 // on what `pdef::decode` of those bytes meshes to: the same measures from the decoded mesh, and a lossy row
 // measured apart from the lossless one.
+// A row with a residual layer is the file `pdeface encode --size` writes, within its budget, and it is far
+// closer to the scan than the curves alone (issue 19).
+TEST(Compare, ResidualRowIsTheSizedFileAndBeatsTheCurves) {
+  const ScanReport& s = sample_report().scans[0];
+  const Variant* v = find(s, "pde 10 % + residual 2048 B");
+  const Variant* curves = find(s, "pde 10 % lossy");
+  ASSERT_TRUE(v && v->fidelity && curves && curves->fidelity) << (v ? v->failure : "missing");
+  EXPECT_LE(v->bytes, 2048U);
+  EXPECT_EQ(v->budget, 2048U);
+  EXPECT_EQ(v->encoded[4], 3); // version 3
+  const Mesh scan = sample_face();
+  const EncodeOutcome file =
+      encode_request(scan, {.profiles = {.ratio = 0.1}, .residual = {.size_bytes = 2048}}).value();
+  EXPECT_TRUE(v->encoded == file.encoded.bytes);
+  EXPECT_LT(v->fidelity->to_scan.mean, 0.5 * curves->fidelity->to_scan.mean);
+  EXPECT_LT(v->fidelity->to_scan.p95, 0.5 * curves->fidelity->to_scan.p95);
+}
+
 TEST(Compare, PdeRowsAreTheRealPdefFileMeasuredOnItsDecodedMesh) {
   const ScanReport& s = sample_report().scans[0];
   const Mesh scan = sample_face();

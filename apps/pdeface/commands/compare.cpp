@@ -169,6 +169,11 @@ void compare_command(CLI::App& app, int& status) {
       ->delimiter(',')
       ->check(CLI::Range(std::size_t{64}, std::size_t{1} << 30))
       ->capture_default_str();
+  cmd->add_option("--pdef-sizes", args->options.pde_budgets,
+                  "Sizes of the .pdef with a residual layer (encode --size), comma-separated")
+      ->delimiter(',')
+      ->check(CLI::Range(std::size_t{64}, std::size_t{1} << 26))
+      ->capture_default_str();
   cmd->add_option("--decimate-bits", args->options.decimate_bits,
                   "Quantisation bits tried per budget (the least error is kept)")
       ->delimiter(',')
