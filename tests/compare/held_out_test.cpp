@@ -185,9 +185,10 @@ TEST_P(HeldOut, ReconstructsTheWholeFaceFaithfully) {
   const FaceScan truth = c.make(*original);
   const test::Posed variant = test::posed(truth, c.seed, c.mm_per_unit, c.units);
   // PDEFACE_HELD_OUT=folder keeps each variant as a file there, to look at (pdeface reconstruct --preview).
-  if (const char* keep = std::getenv("PDEFACE_HELD_OUT"))
+  if (const char* keep = std::getenv("PDEFACE_HELD_OUT")) {
     ASSERT_TRUE(formats::write_mesh(variant.mesh, std::filesystem::path(keep) /
                                                       ("heldout_" + std::to_string(c.seed) + ".ply")));
+  }
   const Result<align::Alignment> alignment = align::align_scan(variant.mesh, std::nullopt, c.variant);
   if (c.limit && !alignment) {
     EXPECT_EQ(alignment.error().code, ErrorCode::NoFace) << alignment.error().to_string();
@@ -214,8 +215,8 @@ TEST_P(HeldOut, ReconstructsTheWholeFaceFaithfully) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Variants, HeldOut, ::testing::Range<std::size_t>(0, cases().size()),
-                         [](const ::testing::TestParamInfo<std::size_t>& info) {
-                           std::string name = cases()[info.param].scan + "_" + cases()[info.param].variant;
+                         [](const ::testing::TestParamInfo<std::size_t>& param) {
+                           std::string name = cases()[param.param].scan + "_" + cases()[param.param].variant;
                            for (char& ch : name)
                              if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
                            return name;

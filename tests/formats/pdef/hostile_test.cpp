@@ -137,7 +137,7 @@ TEST(PdefHostile, MagicVersionFlagsAndTrailingBytes) {
   const std::string bytes = lossy_file();
   expect_error("PLY\n", ErrorCode::BadMagic, 0);
   expect_error("glTF\x02\x00\x00\x00", ErrorCode::BadMagic, 0);
-  for (const char version : {1, 3}) { // 1: the development format of 2026-12-01, never released
+  for (const char version : {char{1}, char{3}}) { // 1: the development format of 2026-12-01, never released
     std::string other = bytes;
     other[4] = version;
     expect_error(other, ErrorCode::UnsupportedVersion, 4);
