@@ -155,7 +155,7 @@ void add_force(CLI::App* cmd, bool& force) {
                 "\"Self-check\"), with a warning");
 }
 
-void print_check(const compare::SelfCheck& check) {
+void print_check(const metrics::SelfCheck& check) {
   if (check.passed())
     fmt::print("self-check on the face: {}\n", check.summary());
   else
@@ -164,7 +164,7 @@ void print_check(const compare::SelfCheck& check) {
 }
 
 int encode_scan(const std::filesystem::path& in, const std::filesystem::path& out,
-                const compare::EncodeRequest& request) {
+                const pipeline::EncodeRequest& request) {
   if (formats::format_from_path(out) != formats::Format::Pdef) {
     fmt::print(stderr,
                "pdeface: error: {}: the output of encode is a .pdef file (decode or reconstruct write "
@@ -174,7 +174,7 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
   }
   Result<formats::LoadedMesh> scan = read_scan(in);
   if (!scan) return fail(scan.error());
-  Result<compare::EncodeOutcome> made = compare::encode_request(scan->mesh, request);
+  Result<pipeline::EncodeOutcome> made = pipeline::encode_request(scan->mesh, request);
   if (!made) return fail(made.error());
   const std::array<OutputFile, 1> outputs{OutputFile{out, made->encoded.bytes}};
   if (Result<void> ok = write_outputs(outputs); !ok) return fail(ok.error());

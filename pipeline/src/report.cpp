@@ -1,0 +1,359 @@
+// compare_scan and compare_scans: every variant of every scan, measured on its decoded bytes.
+
+#include "pdeface/pipeline/report.hpp"
+
+#include "pdeface/align/crop.hpp"
+#include "pdeface/align/frame.hpp"
+#include "pdeface/core/sample_face.hpp"
+#include "pdeface/formats/formats.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
+
+#include "heat_map.hpp"
+#include "parallel.hpp"
+#include "report_detail.hpp"
+#include "variants.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+namespace pdeface::pipeline {
+
+std::string_view to_string(Method method) noexcept {
+  switch (method) {
+  case Method::Raw: return "raw";
+  case Method::Gzip: return "raw+gzip";
+  case Method::Draco: return "draco";
+  case Method::DecimateDraco: return "decimate+draco";
+  case Method::Pde: return "pde";
+  }
+  return "?";
+}
+
+std::size_t Report::failed() const {
+  return static_cast<std::size_t>(
+      std::ranges::count_if(scans, [](const ScanReport& s) { return !s.failure.empty(); }));
+}
+
+namespace {
+
+using detail::Encoded;
+
+constexpr std::array<formats::Format, 4> kRawFormats{formats::Format::Obj, formats::Format::Ply,
+                                                     formats::Format::Vrml, formats::Format::Glb};
+
+std::string extension(formats::Format format) {
+  return std::string(formats::info(format).extensions.front());
+}
+
+// One variant to make: what it is, and how its bytes are made and decoded.
+struct Task {
+  Variant variant;
+  std::function<Result<Encoded>()> make;
+  bool keep_mesh = false; // its decoded mesh is wanted for a heat map
+  std::optional<Mesh> decoded;
+};
+
+// The variant's row from its encoding: sizes, times and the decoded mesh's counts.
+void fill(Variant& v, const Encoded& e, bool keep_bytes) {
+  v.bytes = e.bytes.size();
+  v.encode_ms = e.encode_ms;
+  v.decode_ms = e.decode_ms;
+  v.vertices = e.decoded.vertex_count();
+  v.triangles = e.decoded.triangle_count();
+  if (e.bits > 0) v.bits = e.bits;
+  if (keep_bytes) v.encoded = e.bytes;
+}
+
+bool same_geometry(const Mesh& a, const Mesh& b) {
+  return a.positions == b.positions && a.triangles == b.triangles;
+}
+
+} // namespace
+
+Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const CompareOptions& options,
+                                const std::function<void(std::string_view)>& step) {
+  const detail::Clock::time_point start = detail::Clock::now();
+  const auto tick = [&](std::string_view what) {
+    if (step) step(what);
+  };
+  ScanReport report{.name = std::string(name),
+                    .source = std::string(name),
+                    .units = scan.units,
+                    .vertices = scan.vertex_count(),
+                    .triangles = scan.triangle_count()};
+  const auto named = [&](Error e) {
+    if (e.source.empty()) e.source = name;
+    return e;
+  };
+  Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, name);
+  if (!alignment) return named(std::move(alignment).error());
+  const CanonicalScan canonical = canonical_scan(scan, *alignment);
+  report.units_per_mm = 1.0 / canonical.frame.scale;
+  // The yardstick: the face mask and the evaluation profiles of the scan (at the default slicing).
+  Result<slice::ProfileSet> profiles = extract_profiles(canonical);
+  if (!profiles) return named(std::move(profiles).error());
+  Result<metrics::FaceYardstick> made =
+      metrics::FaceYardstick::make(canonical.mesh, *profiles, options.fidelity);
+  if (!made) return named(std::move(made).error());
+  const metrics::FaceYardstick& yardstick = *made;
+  tick("aligned");
+
+  // Every variant carries the geometry only: positions and triangles (a `.pdef` holds no colours either);
+  // with `crop_face`, of the face alone, back in the scan's frame.
+  Mesh geometry;
+  if (options.crop_face) {
+    Result<Mesh> face = align::crop_face(canonical.mesh, canonical.landmarks);
+    if (!face) return named(std::move(face).error());
+    Mesh back = align::to_scan(*face, canonical.frame);
+    geometry.positions = std::move(back.positions);
+    geometry.triangles = std::move(back.triangles);
+    report.vertices = geometry.vertex_count();
+    report.triangles = geometry.triangle_count();
+    report.face_only = true;
+  } else {
+    geometry.positions = scan.positions;
+    geometry.triangles = scan.triangles;
+  }
+  geometry.units = scan.units;
+  geometry.name = scan.name;
+  const auto in_canonical = [&](const Mesh& decoded) {
+    return align::to_canonical(decoded, canonical.frame);
+  };
+  const auto measure = [&](Task& task, const Result<Encoded>& e) {
+    if (!e) {
+      task.variant.failure = e.error().message;
+      return;
+    }
+    fill(task.variant, *e, options.keep_bytes);
+    const Mesh mesh = in_canonical(e->decoded);
+    if (task.variant.method != Method::Raw && task.variant.method != Method::Gzip) {
+      Result<metrics::MeshFidelity> f = yardstick.measure(mesh);
+      if (!f) {
+        task.variant.failure = f.error().message;
+      } else if (const metrics::SelfCheck check =
+                     metrics::self_check(*f, metrics::facing_away(mesh, yardstick.mask()), options.check);
+                 task.variant.method == Method::Pde && !check.passed()) {
+        // What `pdeface encode` would refuse to write is a failed row, never a silent number.
+        task.variant.failure = "self-check failed: " + check.summary();
+        task.keep_mesh = false;
+      } else {
+        task.variant.fidelity = *f;
+      }
+    }
+    if (task.keep_mesh || task.variant.method == Method::Raw || task.variant.method == Method::Gzip)
+      task.decoded = e->decoded;
+  };
+  const auto run = [&](std::vector<Task>& tasks) {
+    detail::parallel_for(tasks.size(), options.threads, [&](std::size_t i) {
+      measure(tasks[i], tasks[i].make());
+      tick(tasks[i].variant.name);
+    });
+  };
+
+  // Raw files, Draco at each quantisation, and the PDE at each ratio.
+  std::vector<Task> tasks;
+  for (bool gzipped : {false, true})
+    for (formats::Format f : kRawFormats) {
+      const std::string ext = extension(f) + (gzipped ? ".gz" : "");
+      tasks.push_back(
+          {.variant = {.method = gzipped ? Method::Gzip : Method::Raw,
+                       .name = ext.substr(1),
+                       .extension = ext,
+                       .lossless = true},
+           .make = [&, f, gzipped] { return detail::encode_raw(geometry, f, gzipped, options.gzip_level); }});
+    }
+  for (int bits : options.draco_bits)
+    tasks.push_back({.variant = {.method = Method::Draco,
+                                 .name = fmt::format("draco {} bits", bits),
+                                 .extension = ".drc",
+                                 .bits = bits,
+                                 .lossless = false},
+                     .make = [&, bits] { return detail::encode_draco(geometry, bits, options.draco_level); },
+                     .keep_mesh = bits == options.heat_draco_bits});
+  for (double ratio : options.ratios)
+    for (bool lossless : {false, true}) {
+      if ((lossless && !options.pde_lossless) || (!lossless && !options.pde_lossy)) continue;
+      tasks.push_back(
+          {.variant = {.method = Method::Pde,
+                       .name = fmt::format("pde {:g} % {}", 100.0 * ratio, lossless ? "lossless" : "lossy"),
+                       .extension = ".pdef",
+                       .ratio = ratio,
+                       .lossless = lossless},
+           .make =
+               [&, ratio, lossless] {
+                 return detail::encode_pde(scan, *alignment, ratio, lossless, options.scheme, name);
+               },
+           .keep_mesh = !lossless && std::abs(ratio - options.heat_ratio) < 1e-9});
+    }
+  run(tasks);
+
+  // The raw files decode to the same float32 geometry: measured once, on the first decoded, and each
+  // other row shares it only when its decoded geometry is the same.
+  std::optional<metrics::MeshFidelity> raw_fidelity;
+  const Mesh* raw_mesh = nullptr;
+  for (Task& t : tasks) {
+    if (!t.decoded || (t.variant.method != Method::Raw && t.variant.method != Method::Gzip)) continue;
+    if (!raw_mesh || !same_geometry(*raw_mesh, *t.decoded)) {
+      Result<metrics::MeshFidelity> f = yardstick.measure(in_canonical(*t.decoded));
+      if (!f) {
+        t.variant.failure = f.error().message;
+        continue;
+      }
+      raw_mesh = &*t.decoded;
+      raw_fidelity = *f;
+    }
+    t.variant.fidelity = raw_fidelity;
+  }
+
+  // Decimate + Draco at each budget, and at each `.pdef` variant's size.
+  std::vector<std::pair<std::size_t, std::string>> budgets;
+  for (std::size_t budget : options.budgets)
+    budgets.emplace_back(budget, fmt::format("decimate+draco {} B", budget));
+  std::string heat_label; // decimate + Draco at the size of the PDE variant shown as a heat map
+  if (options.budgets_at_pde)
+    for (const Task& t : tasks)
+      if (t.variant.method == Method::Pde && t.variant.bytes > 0) {
+        budgets.emplace_back(t.variant.bytes, "decimate+draco = " + t.variant.name);
+        if (t.keep_mesh) heat_label = budgets.back().second;
+      }
+  std::vector<Task> decimated;
+  for (const auto& entry : budgets) {
+    const std::size_t budget = entry.first;
+    const std::string& label = entry.second;
+    decimated.push_back({.variant = {.method = Method::DecimateDraco,
+                                     .name = label,
+                                     .extension = ".drc",
+                                     .budget = budget,
+                                     .lossless = false},
+                         .make = [&, budget]() -> Result<Encoded> {
+                           Result<detail::Decimated> d = detail::decimate_to_budget(
+                               geometry, budget, options, [&](const Mesh& decoded) {
+                                 return yardstick.quick_mask_mean(in_canonical(decoded));
+                               });
+                           if (!d) return std::move(d).error();
+                           return std::move(d->encoded);
+                         },
+                         .keep_mesh = label == heat_label});
+  }
+  run(decimated);
+
+  // The rows, in a reading order: raw, gzip, Draco, decimate + Draco, PDE.
+  std::vector<Task*> order;
+  for (Method m : {Method::Raw, Method::Gzip, Method::Draco})
+    for (Task& t : tasks)
+      if (t.variant.method == m) order.push_back(&t);
+  for (Task& t : decimated)
+    order.push_back(&t);
+  for (Task& t : tasks)
+    if (t.variant.method == Method::Pde) order.push_back(&t);
+  for (const Task* t : order)
+    if (t->variant.method == Method::Raw && t->variant.extension == ".ply")
+      report.ply_bytes = t->variant.bytes;
+  for (Task* t : order) {
+    if (report.ply_bytes > 0)
+      t->variant.ratio_to_ply = static_cast<double>(t->variant.bytes) / static_cast<double>(report.ply_bytes);
+    if (t->keep_mesh && t->decoded && t->variant.fidelity)
+      report.heat_maps.push_back(
+          detail::heat_map(in_canonical(*t->decoded), yardstick, options.heat_max_mm, t->variant.name,
+                           detail::slug(report.name) + "_" + detail::slug(t->variant.name) + ".glb"));
+    report.variants.push_back(std::move(t->variant));
+  }
+  report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
+  return report;
+}
+
+Result<std::vector<std::filesystem::path>> expand_inputs(std::span<const std::filesystem::path> inputs) {
+  std::vector<std::filesystem::path> out;
+  for (const std::filesystem::path& in : inputs) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(in, ec)) {
+      std::vector<std::filesystem::path> files;
+      for (const auto& entry : std::filesystem::directory_iterator(in, ec))
+        if (entry.is_regular_file(ec) && formats::format_from_path(entry.path()))
+          files.push_back(entry.path());
+      if (ec) return make_error(ErrorCode::Io, ec.message(), in.string());
+      std::ranges::sort(files);
+      out.insert(out.end(), files.begin(), files.end());
+    } else if (std::filesystem::is_regular_file(in, ec)) {
+      out.push_back(in);
+    } else {
+      return make_error(ErrorCode::Io, "no such file or folder", in.string());
+    }
+  }
+  return out;
+}
+
+Report compare_scans(const CompareRequest& request) {
+  const detail::Clock::time_point start = detail::Clock::now();
+  Report report{.options = request.options};
+  const bool sample = request.inputs.empty();
+  const std::size_t count = sample ? 1 : request.inputs.size();
+  report.scans.resize(count);
+  // Steps per scan: aligning, then every variant (the decimated rows at the PDE sizes included).
+  const std::size_t pde_rows = request.options.ratios.size() *
+                               ((request.options.pde_lossy ? 1 : 0) + (request.options.pde_lossless ? 1 : 0));
+  const std::size_t steps = 1 + 2 * kRawFormats.size() + request.options.draco_bits.size() + pde_rows +
+                            request.options.budgets.size() + (request.options.budgets_at_pde ? pde_rows : 0);
+  Progress progress{.steps_total = steps * count, .scans_total = count};
+  std::mutex mutex;
+  const auto report_progress = [&](const std::string& scan, std::string_view what, std::size_t steps_done,
+                                   int scan_finished, bool failed) {
+    const std::lock_guard lock(mutex);
+    progress.steps_done = std::min(progress.steps_total, progress.steps_done + steps_done);
+    progress.scans_done += static_cast<std::size_t>(scan_finished);
+    progress.scans_failed += failed ? 1 : 0;
+    progress.scan = scan;
+    progress.what = what;
+    if (request.progress) request.progress(progress);
+  };
+
+  const unsigned workers = std::min<unsigned>(static_cast<unsigned>(count), detail::cores());
+  CompareOptions options = request.options;
+  if (options.threads == 0) options.threads = std::max(1U, detail::cores() / workers);
+  // Unique names: the heat-map files are named after them.
+  std::vector<std::string> names;
+  std::map<std::string, int> seen;
+  for (std::size_t i = 0; i < count; ++i) {
+    names.push_back(sample ? std::string("sample face") : request.inputs[i].filename().string());
+    if (const int n = seen[names.back()]++; n > 0) names.back() += fmt::format(" ({})", n + 1);
+  }
+  detail::parallel_for(count, workers, [&](std::size_t i) {
+    ScanReport& out = report.scans[i];
+    const std::string& name = names[i];
+    const std::string source = sample ? name : request.inputs[i].string();
+    std::size_t done = 0;
+    const auto fail = [&](const Error& e) {
+      out = ScanReport{.name = name, .source = source, .failure = e.to_string()};
+      report_progress(name, "failed: " + e.to_string(), steps - done, 1, true);
+    };
+    Mesh mesh;
+    if (sample) {
+      mesh = sample_face();
+    } else {
+      Result<formats::LoadedMesh> loaded = formats::read_mesh(request.inputs[i]);
+      if (!loaded) return fail(loaded.error());
+      mesh = std::move(loaded->mesh);
+    }
+    Result<ScanReport> made = compare_scan(mesh, name, options, [&](std::string_view what) {
+      ++done;
+      report_progress(name, what, 1, 0, false);
+    });
+    if (!made) {
+      Error e = std::move(made).error();
+      e.source = source;
+      return fail(e);
+    }
+    out = *std::move(made);
+    out.source = source;
+    report_progress(name, fmt::format("done in {:.1f} s", out.seconds), done < steps ? steps - done : 0, 1,
+                    false);
+  });
+  report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
+  return report;
+}
+
+} // namespace pdeface::pipeline
