@@ -2,12 +2,9 @@
 
 #include "pdeface/core/text.hpp"
 #include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 
 namespace pdeface::pipeline {
-
-pdef::Frame frame_of(const align::FaceFrame& frame) {
-  return {frame.rotation, frame.translation, frame.scale, frame.scan_units};
-}
 
 pdef::Face to_face(const slice::ProfileSet& profiles, const pde::Surface& surface,
                    const pde::Options& options) {
@@ -17,7 +14,7 @@ pdef::Face to_face(const slice::ProfileSet& profiles, const pde::Surface& surfac
     face.planes.push_back(c.x);
     face.filled.push_back(c.filled);
   }
-  face.frame = frame_of(profiles.frame);
+  face.frame = profiles.frame;
   face.pde = options;
   face.pde.smoothing = surface.smoothing();
   face.pde.modes = surface.modes();
@@ -34,10 +31,7 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
                                      const EncodeRequest& request) {
   const CanonicalScan canonical = canonical_scan(scan, alignment);
   Result<slice::ProfileSet> profiles = extract_profiles(canonical, request.profiles);
-  auto named = [&](Error e) {
-    if (e.source.empty()) e.source = request.source;
-    return e;
-  };
+  auto named = [&](Error e) { return with_source(std::move(e), request.source); };
   if (!profiles) return named(std::move(profiles).error());
   Result<pde::Surface> surface = surface_from(*profiles, request.pde, request.source);
   if (!surface) return named(std::move(surface).error());

@@ -1,17 +1,11 @@
 #include "pdeface/pipeline/reconstruct.hpp"
 
 #include "pdeface/align/frame.hpp"
-#include "pdeface/pipeline/encode.hpp"
 
 #include <algorithm>
 
 namespace pdeface::pipeline {
 namespace {
-
-Error named(Error error, std::string_view source) {
-  if (error.source.empty()) error.source = source;
-  return error;
-}
 
 double width(const slice::ProfileSet& p) { return p.border[0] + p.border[1]; }
 double height(const slice::ProfileSet& p) { return p.height_range[1] - p.height_range[0]; }
@@ -61,14 +55,14 @@ Result<Reconstruction> reconstruct(const Mesh& scan, const align::Alignment& ali
 Result<Reconstruction> reconstruct(const CanonicalScan& scan, const ReconstructOptions& options,
                                    std::string_view source) {
   Result<slice::ProfileSet> profiles = extract_profiles(scan, options.profiles);
-  if (!profiles) return named(std::move(profiles).error(), source);
+  if (!profiles) return with_source(std::move(profiles).error(), source);
   Result<pde::Surface> surface = surface_from(*profiles, options.pde, source);
-  if (!surface) return named(std::move(surface).error(), source);
+  if (!surface) return with_source(std::move(surface).error(), source);
 
   Resolution grid = options.resolution.value_or(resolution_for(*profiles, options.grid_spacing_mm));
   if (grid.u == 0) grid = resolution_for(*profiles, grid.v);
   grid = {std::max<std::size_t>(grid.u, 2), std::max<std::size_t>(grid.v, 2)};
-  Result<pdef::SurfaceMesh> meshes = pdef::surface_mesh(*surface, grid, frame_of(scan.frame), source);
+  Result<pdef::SurfaceMesh> meshes = pdef::surface_mesh(*surface, grid, scan.frame, source);
   if (!meshes) return std::move(meshes).error();
   const std::string name =
       scan.mesh.name.empty() ? std::string("pde surface") : scan.mesh.name + " (pde surface)";

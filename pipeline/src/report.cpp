@@ -85,10 +85,7 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
                     .units = scan.units,
                     .vertices = scan.vertex_count(),
                     .triangles = scan.triangle_count()};
-  const auto named = [&](Error e) {
-    if (e.source.empty()) e.source = name;
-    return e;
-  };
+  const auto named = [&](Error e) { return with_source(std::move(e), name); };
   Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, name);
   if (!alignment) return named(std::move(alignment).error());
   const CanonicalScan canonical = canonical_scan(scan, *alignment);

@@ -10,11 +10,6 @@
 namespace pdeface::pipeline {
 namespace {
 
-Error named(Error error, std::string_view source) {
-  if (error.source.empty()) error.source = source;
-  return error;
-}
-
 std::string file_name(std::string_view source) { return std::filesystem::path(source).filename().string(); }
 
 } // namespace
@@ -24,7 +19,7 @@ Result<ProfilesOutcome> profiles_request(const Mesh& scan, const ProfilesRequest
   if (!alignment) return alignment.error();
   const CanonicalScan canonical = canonical_scan(scan, *alignment);
   Result<slice::ProfileSet> set = extract_profiles(canonical, request.profiles);
-  if (!set) return named(std::move(set).error(), request.source);
+  if (!set) return with_source(std::move(set).error(), request.source);
   ProfilesOutcome out{*alignment, *std::move(set), {}, {}};
   out.json = slice::write_profiles_json(out.profiles);
   if (request.svg)

@@ -68,11 +68,7 @@ Result<std::vector<TableRow>> table_rows(const Mesh& scan, const align::Alignmen
     profile_options.ratio = ratio;
     profile_options.points.reset();
     Result<slice::ProfileSet> profiles = extract_profiles(canonical, profile_options);
-    if (!profiles) {
-      Error e = std::move(profiles).error();
-      if (e.source.empty()) e.source = source;
-      return e;
-    }
+    if (!profiles) return with_source(std::move(profiles).error(), source);
     sets.push_back(std::move(profiles).value());
   }
   // Every row is independent (solving, meshing and measuring are pure): spread them over the cores.

@@ -7,6 +7,7 @@
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
 #include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/pipeline/report.hpp"
 
 #include "gltf_validator.hpp"

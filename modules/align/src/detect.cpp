@@ -22,7 +22,6 @@ using detail::mirror_of;
 using detail::mirror_rms;
 using detail::plane_of;
 using detail::refine;
-using detail::Similarity;
 
 // Lengths below are in face millimetres: millimetres of the face at the scale being tried. `unit` (scan
 // units per face millimetre) turns them into the scan's units.
@@ -449,8 +448,6 @@ Landmarks symmetrised(const Landmarks& found, const Plane& plane) {
   return out;
 }
 
-Similarity similarity(const FaceFrame& f) { return {f.rotation, f.translation, f.scale}; }
-
 // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
 Similarity nose_frame(const Nose& nose, const Vec3& up, double mm_per_unit) {
   Eigen::Matrix3d r;
@@ -480,9 +477,7 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, std::opt
   Similarity frame;
   std::vector<Similarity> starts;
   if (from) {
-    starts.push_back(*from);
-    starts.back().translation *= mm_per_unit / from->scale;
-    starts.back().scale = mm_per_unit;
+    starts.push_back(from->with_scale(mm_per_unit));
   } else {
     for (const Vec3& up : {c.nose.up, Vec3(-c.nose.up)})
       starts.push_back(nose_frame(c.nose, up, mm_per_unit));
@@ -505,7 +500,7 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, std::opt
     if (!next) break;
     const double turn = Eigen::AngleAxisd(next->rotation * frame.rotation.transpose()).angle();
     if (turn < 0.01 && std::abs(mm / frame.scale - 1.0) < 0.01) break; // settled
-    frame = similarity(*next);
+    frame = Similarity(*next);
     if (round == rounds) break;
     const Landmarks found =
         detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame, cell, s.loops);
@@ -526,9 +521,9 @@ struct Fitted {
 
 // The landmarks searched in `start`, the frame fitted to them (rigidly, at the scale chosen), and again
 // until the frame stops moving (a fixed point does not depend on where the search started).
-std::optional<Fitted> fit_landmarks(const Scene& s, Similarity frame, double mm_per_unit, Units units) {
-  frame.translation *= mm_per_unit / frame.scale;
-  frame.scale = mm_per_unit;
+std::optional<Fitted> fit_landmarks(const Scene& s, const Similarity& start, double mm_per_unit,
+                                    Units units) {
+  Similarity frame = start.with_scale(mm_per_unit);
   std::optional<Fitted> fitted;
   for (int round = 0; round < 10; ++round) {
     Landmarks found =
@@ -539,7 +534,7 @@ std::optional<Fitted> fit_landmarks(const Scene& s, Similarity frame, double mm_
     Fitted now{std::move(found), *fit, shape ? shape->rms_mm : std::numeric_limits<double>::infinity()};
     const double turn = Eigen::AngleAxisd(fit->rotation * frame.rotation.transpose()).angle();
     const double shift = (fit->translation - frame.translation).norm();
-    frame = similarity(*fit);
+    frame = Similarity(*fit);
     const bool settled = round > 0 && turn < 1e-4 && shift < 0.01; // 0.006°, 10 µm
     // Settled: the fixed point. Else (landmarks jumping between two places) the round that fitted best.
     if (settled || !fitted || now.shape_rms < fitted->shape_rms) fitted = std::move(now);
@@ -591,7 +586,7 @@ Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const Fac
   const PointIndex index(scan.positions);
   const Landmarks found =
       detail::search_landmarks(scan.positions, scan.triangles, detail::median_spacing(scan.positions, index),
-                               similarity(frame), 1.0, detail::boundary_loops(scan.triangles), true);
+                               Similarity(frame), 1.0, detail::boundary_loops(scan.triangles), true);
   Landmarks out = given;
   for (std::size_t i = 0; i < kLandmarkCount; ++i)
     if (!out.points[i] && found.points[i]) out.points[i] = *found.points[i];
@@ -728,7 +723,7 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       const std::optional<Shape> shape = shape_of(fitted->found);
       // Until the scale moves less than 0.1 %: a fixed point, whatever the pose the search started from.
       if (!shape || std::abs(shape->mm_per_unit / face_mm - 1.0) < 1e-3) break;
-      start = similarity(fitted->frame);
+      start = fitted->frame;
       face_mm = shape->mm_per_unit;
     }
     if (!fitted)
@@ -765,14 +760,9 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
       out.nose_prominence_mm = around->nose.prominence;
     }
     out.fit_rms_mm = fitted->shape_rms;
-    {
-      Similarity seen = similarity(out.frame);
-      seen.translation *= face_mm / seen.scale;
-      seen.scale = face_mm;
-      out.eye_hollow_mm = detail::eye_hollowness(scene.mesh.positions, scene.mesh.triangles, scene.spacing,
-                                                 seen, out.landmarks)
-                              .value_or(0.0);
-    }
+    out.eye_hollow_mm = detail::eye_hollowness(scene.mesh.positions, scene.mesh.triangles, scene.spacing,
+                                               out.frame.with_scale(face_mm), out.landmarks)
+                            .value_or(0.0);
     const Cues c = cues(out);
     out.confidence = c.confidence();
     if (out.confidence < options.min_confidence)

@@ -7,17 +7,14 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/metrics/fidelity.hpp"
+#include "pdeface/pde/surface.hpp"
 #include "pdeface/pdef/pdef.hpp"
-#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/slice/profiles.hpp"
 
 #include <optional>
 #include <string>
 
 namespace pdeface::pipeline {
-
-//! The alignment's frame as the document stores it.
-[[nodiscard]] pdef::Frame frame_of(const align::FaceFrame& frame);
 
 //! The document of `profiles` and the `surface` built through them with `options`: the curves
 //! (`to_curves`), their planes and filled samples, the frame back to the scan, and the options with the
