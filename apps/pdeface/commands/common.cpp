@@ -56,8 +56,14 @@ void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks) {
       ->check(CLI::ExistingFile);
 }
 
-void add_resolution(CLI::App* cmd, std::vector<std::size_t>& resolution) {
-  cmd->add_option("--resolution", resolution,
+std::optional<pipeline::Resolution> ResolutionArg::grid() const {
+  if (values.size() == 1) return pipeline::Resolution{0, values[0]};
+  if (values.size() == 2) return pipeline::Resolution{values[0], values[1]};
+  return std::nullopt;
+}
+
+void add_resolution(CLI::App* cmd, ResolutionArg& resolution) {
+  cmd->add_option("--resolution", resolution.values,
                   "Grid: V points along the face's height (across in proportion), or UxV; default about 1 mm "
                   "spacing")
       ->delimiter('x')

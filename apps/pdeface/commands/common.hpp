@@ -77,8 +77,14 @@ void add_input(CLI::App* cmd, std::filesystem::path& in, const std::string& desc
 void add_output(CLI::App* cmd, std::filesystem::path& out, const std::string& description);
 //! --landmarks: a landmark file to use instead of detecting them.
 void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks);
-//! --resolution V or UxV: the surface's grid (V along the face's height, U across).
-void add_resolution(CLI::App* cmd, std::vector<std::size_t>& resolution);
+//! --resolution V or UxV: the surface's grid (V along the face's height, U across), parsed here for every
+//! command that takes it.
+struct ResolutionArg {
+  std::vector<std::size_t> values; // as given: {v} or {u, v}
+  //! The grid asked for (u = 0: as many across as keep the cells square), or none: the default spacing.
+  [[nodiscard]] std::optional<pipeline::Resolution> grid() const;
+};
+void add_resolution(CLI::App* cmd, ResolutionArg& resolution);
 void add_write_options(CLI::App* cmd, formats::WriteOptions& write);
 
 //! How a scan becomes curves: landmarks given or detected, and the slicing options.

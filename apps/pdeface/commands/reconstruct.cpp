@@ -18,7 +18,7 @@ struct ReconstructArgs {
   fs::path preview;  // SVG: scan and reconstruction side by side
   CurveArgs curves;
   SurfaceArgs surface;
-  std::vector<std::size_t> resolution; // {v} or {u, v}
+  ResolutionArg resolution;
   formats::WriteOptions write;
   bool force = false;
 };
@@ -54,9 +54,7 @@ int run_reconstruct(const ReconstructArgs& args) {
       .preview = !args.preview.empty(),
       .source = args.in.string(),
       .force = args.force};
-  if (args.resolution.size() == 1) request.options.resolution = pipeline::Resolution{0, args.resolution[0]};
-  if (args.resolution.size() == 2)
-    request.options.resolution = pipeline::Resolution{args.resolution[0], args.resolution[1]};
+  request.options.resolution = args.resolution.grid();
   Result<pipeline::ReconstructOutcome> made = pipeline::reconstruct_request(input->scan.mesh, request);
   if (!made) return fail(made.error());
 
