@@ -72,39 +72,35 @@ bool same_geometry(const Mesh& a, const Mesh& b) {
   return a.positions == b.positions && a.triangles == b.triangles;
 }
 
-} // namespace
+// Step 1: the scan aligned, in the canonical frame, and its yardstick: the face mask and the evaluation
+// profiles of the scan at the default slicing, against which every variant is measured.
+struct Prepared {
+  align::Alignment alignment;
+  CanonicalScan canonical;
+  metrics::FaceYardstick yardstick;
+};
 
-Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const CompareOptions& options,
-                                const std::function<void(std::string_view)>& step) {
-  const detail::Clock::time_point start = detail::Clock::now();
-  const auto tick = [&](std::string_view what) {
-    if (step) step(what);
-  };
-  ScanReport report{.name = std::string(name),
-                    .source = std::string(name),
-                    .units = scan.units,
-                    .vertices = scan.vertex_count(),
-                    .triangles = scan.triangle_count()};
+Result<Prepared> prepare(const Mesh& scan, std::string_view name, const CompareOptions& options) {
   const auto named = [&](Error e) { return with_source(std::move(e), name); };
   Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, name);
   if (!alignment) return named(std::move(alignment).error());
-  const CanonicalScan canonical = canonical_scan(scan, *alignment);
-  report.units_per_mm = 1.0 / canonical.frame.scale;
-  // The yardstick: the face mask and the evaluation profiles of the scan (at the default slicing).
+  CanonicalScan canonical = canonical_scan(scan, *alignment);
   Result<slice::ProfileSet> profiles = extract_profiles(canonical);
   if (!profiles) return named(std::move(profiles).error());
   Result<metrics::FaceYardstick> made =
       metrics::FaceYardstick::make(canonical.mesh, *profiles, options.fidelity);
   if (!made) return named(std::move(made).error());
-  const metrics::FaceYardstick& yardstick = *made;
-  tick("aligned");
+  return Prepared{*std::move(alignment), std::move(canonical), *std::move(made)};
+}
 
-  // Every variant carries the geometry only: positions and triangles (a `.pdef` holds no colours either);
-  // with `crop_face`, of the face alone, back in the scan's frame.
+// Step 2: what every variant compresses: the geometry only, positions and triangles (a `.pdef` holds no
+// colours either); with `crop_face`, of the face alone, back in the scan's frame (`report` says so).
+Result<Mesh> variant_geometry(const Mesh& scan, const CanonicalScan& canonical, const CompareOptions& options,
+                              ScanReport& report) {
   Mesh geometry;
   if (options.crop_face) {
     Result<Mesh> face = align::crop_face(canonical.mesh, canonical.landmarks);
-    if (!face) return named(std::move(face).error());
+    if (!face) return with_source(std::move(face).error(), report.name);
     Mesh back = align::to_scan(*face, canonical.frame);
     geometry.positions = std::move(back.positions);
     geometry.triangles = std::move(back.triangles);
@@ -117,22 +113,42 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   }
   geometry.units = scan.units;
   geometry.name = scan.name;
-  const auto in_canonical = [&](const Mesh& decoded) {
-    return align::to_canonical(decoded, canonical.frame);
-  };
-  const auto measure = [&](Task& task, const Result<Encoded>& e) {
+  return geometry;
+}
+
+// Steps 3 and 5: tasks made in parallel and each decoded variant measured on the yardstick.
+class Measurer {
+public:
+  Measurer(const Prepared& prepared, const CompareOptions& options,
+           const std::function<void(std::string_view)>& tick)
+      : prepared_(prepared), options_(options), tick_(tick) {}
+
+  [[nodiscard]] Mesh in_canonical(const Mesh& decoded) const {
+    return align::to_canonical(decoded, prepared_.canonical.frame);
+  }
+  [[nodiscard]] const metrics::FaceYardstick& yardstick() const { return prepared_.yardstick; }
+
+  void run(std::vector<Task>& tasks) const {
+    detail::parallel_for(tasks.size(), options_.threads, [&](std::size_t i) {
+      measure(tasks[i], tasks[i].make());
+      tick_(tasks[i].variant.name);
+    });
+  }
+
+private:
+  void measure(Task& task, const Result<Encoded>& e) const {
     if (!e) {
       task.variant.failure = e.error().message;
       return;
     }
-    fill(task.variant, *e, options.keep_bytes);
+    fill(task.variant, *e, options_.keep_bytes);
     const Mesh mesh = in_canonical(e->decoded);
     if (task.variant.method != Method::Raw && task.variant.method != Method::Gzip) {
-      Result<metrics::MeshFidelity> f = yardstick.measure(mesh);
+      Result<metrics::MeshFidelity> f = yardstick().measure(mesh);
       if (!f) {
         task.variant.failure = f.error().message;
       } else if (const metrics::SelfCheck check =
-                     metrics::self_check(*f, metrics::facing_away(mesh, yardstick.mask()), options.check);
+                     metrics::self_check(*f, metrics::facing_away(mesh, yardstick().mask()), options_.check);
                  task.variant.method == Method::Pde && !check.passed()) {
         // What `pdeface encode` would refuse to write is a failed row, never a silent number.
         task.variant.failure = "self-check failed: " + check.summary();
@@ -143,15 +159,17 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
     }
     if (task.keep_mesh || task.variant.method == Method::Raw || task.variant.method == Method::Gzip)
       task.decoded = e->decoded;
-  };
-  const auto run = [&](std::vector<Task>& tasks) {
-    detail::parallel_for(tasks.size(), options.threads, [&](std::size_t i) {
-      measure(tasks[i], tasks[i].make());
-      tick(tasks[i].variant.name);
-    });
-  };
+  }
 
-  // Raw files, Draco at each quantisation, and the PDE at each ratio.
+  const Prepared& prepared_;
+  const CompareOptions& options_;
+  const std::function<void(std::string_view)>& tick_;
+};
+
+// Step 3's tasks: raw files (and gzipped), Draco at each quantisation, and the PDE at each ratio. The
+// tasks refer to `geometry`, `scan`, `alignment` and `options`, which must outlive them.
+std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const align::Alignment& alignment,
+                                 std::string_view name, const CompareOptions& options) {
   std::vector<Task> tasks;
   for (bool gzipped : {false, true})
     for (formats::Format f : kRawFormats) {
@@ -181,21 +199,23 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
                        .ratio = ratio,
                        .lossless = lossless},
            .make =
-               [&, ratio, lossless] {
-                 return detail::encode_pde(scan, *alignment, ratio, lossless, options.scheme, name);
+               [&, ratio, lossless, name] {
+                 return detail::encode_pde(scan, alignment, ratio, lossless, options.scheme, name);
                },
            .keep_mesh = !lossless && std::abs(ratio - options.heat_ratio) < 1e-9});
     }
-  run(tasks);
+  return tasks;
+}
 
-  // The raw files decode to the same float32 geometry: measured once, on the first decoded, and each
-  // other row shares it only when its decoded geometry is the same.
+// Step 4: the raw files decode to the same float32 geometry: measured once, on the first decoded, and each
+// other row shares it only when its decoded geometry is the same.
+void share_raw_fidelity(std::vector<Task>& tasks, const Measurer& measurer) {
   std::optional<metrics::MeshFidelity> raw_fidelity;
   const Mesh* raw_mesh = nullptr;
   for (Task& t : tasks) {
     if (!t.decoded || (t.variant.method != Method::Raw && t.variant.method != Method::Gzip)) continue;
     if (!raw_mesh || !same_geometry(*raw_mesh, *t.decoded)) {
-      Result<metrics::MeshFidelity> f = yardstick.measure(in_canonical(*t.decoded));
+      Result<metrics::MeshFidelity> f = measurer.yardstick().measure(measurer.in_canonical(*t.decoded));
       if (!f) {
         t.variant.failure = f.error().message;
         continue;
@@ -205,12 +225,17 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
     }
     t.variant.fidelity = raw_fidelity;
   }
+}
 
-  // Decimate + Draco at each budget, and at each `.pdef` variant's size.
+// Step 5's tasks: decimate + Draco at each budget, and at each `.pdef` variant's size (the one at the size
+// of the PDE variant shown as a heat map keeps its mesh). They refer to `geometry`, `options` and
+// `measurer`, which must outlive them.
+std::vector<Task> decimation_tasks(const std::vector<Task>& tasks, const Mesh& geometry,
+                                   const CompareOptions& options, const Measurer& measurer) {
   std::vector<std::pair<std::size_t, std::string>> budgets;
   for (std::size_t budget : options.budgets)
     budgets.emplace_back(budget, fmt::format("decimate+draco {} B", budget));
-  std::string heat_label; // decimate + Draco at the size of the PDE variant shown as a heat map
+  std::string heat_label;
   if (options.budgets_at_pde)
     for (const Task& t : tasks)
       if (t.variant.method == Method::Pde && t.variant.bytes > 0) {
@@ -229,16 +254,20 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
                          .make = [&, budget]() -> Result<Encoded> {
                            Result<detail::Decimated> d = detail::decimate_to_budget(
                                geometry, budget, options, [&](const Mesh& decoded) {
-                                 return yardstick.quick_mask_mean(in_canonical(decoded));
+                                 return measurer.yardstick().quick_mask_mean(measurer.in_canonical(decoded));
                                });
                            if (!d) return std::move(d).error();
                            return std::move(d->encoded);
                          },
                          .keep_mesh = label == heat_label});
   }
-  run(decimated);
+  return decimated;
+}
 
-  // The rows, in a reading order: raw, gzip, Draco, decimate + Draco, PDE.
+// Step 6: the rows in a reading order (raw, gzip, Draco, decimate + Draco, PDE), their sizes against the
+// raw PLY's, and the heat maps of the variants that kept their meshes.
+void add_rows(ScanReport& report, std::vector<Task>& tasks, std::vector<Task>& decimated,
+              const Measurer& measurer, const CompareOptions& options) {
   std::vector<Task*> order;
   for (Method m : {Method::Raw, Method::Gzip, Method::Draco})
     for (Task& t : tasks)
@@ -254,11 +283,40 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
     if (report.ply_bytes > 0)
       t->variant.ratio_to_ply = static_cast<double>(t->variant.bytes) / static_cast<double>(report.ply_bytes);
     if (t->keep_mesh && t->decoded && t->variant.fidelity)
-      report.heat_maps.push_back(
-          detail::heat_map(in_canonical(*t->decoded), yardstick, options.heat_max_mm, t->variant.name,
-                           detail::slug(report.name) + "_" + detail::slug(t->variant.name) + ".glb"));
+      report.heat_maps.push_back(detail::heat_map(
+          measurer.in_canonical(*t->decoded), measurer.yardstick(), options.heat_max_mm, t->variant.name,
+          detail::slug(report.name) + "_" + detail::slug(t->variant.name) + ".glb"));
     report.variants.push_back(std::move(t->variant));
   }
+}
+
+} // namespace
+
+Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const CompareOptions& options,
+                                const std::function<void(std::string_view)>& step) {
+  const detail::Clock::time_point start = detail::Clock::now();
+  const std::function<void(std::string_view)> tick = [&](std::string_view what) {
+    if (step) step(what);
+  };
+  ScanReport report{.name = std::string(name),
+                    .source = std::string(name),
+                    .units = scan.units,
+                    .vertices = scan.vertex_count(),
+                    .triangles = scan.triangle_count()};
+  Result<Prepared> prepared = prepare(scan, name, options);
+  if (!prepared) return std::move(prepared).error();
+  report.units_per_mm = 1.0 / prepared->canonical.frame.scale;
+  tick("aligned");
+  Result<Mesh> geometry = variant_geometry(scan, prepared->canonical, options, report);
+  if (!geometry) return std::move(geometry).error();
+
+  const Measurer measurer(*prepared, options, tick);
+  std::vector<Task> tasks = encoding_tasks(*geometry, scan, prepared->alignment, name, options);
+  measurer.run(tasks);
+  share_raw_fidelity(tasks, measurer);
+  std::vector<Task> decimated = decimation_tasks(tasks, *geometry, options, measurer);
+  measurer.run(decimated);
+  add_rows(report, tasks, decimated, measurer, options);
   report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
   return report;
 }
@@ -284,6 +342,15 @@ Result<std::vector<std::filesystem::path>> expand_inputs(std::span<const std::fi
   return out;
 }
 
+std::string Progress::what() const {
+  switch (event) {
+  case ProgressEvent::Done: return fmt::format("done in {:.1f} s", seconds);
+  case ProgressEvent::Failed: return "failed: " + failure;
+  case ProgressEvent::Step: break;
+  }
+  return step;
+}
+
 Report compare_scans(const CompareRequest& request) {
   const detail::Clock::time_point start = detail::Clock::now();
   Report report{.options = request.options};
@@ -297,14 +364,18 @@ Report compare_scans(const CompareRequest& request) {
                             request.options.budgets.size() + (request.options.budgets_at_pde ? pde_rows : 0);
   Progress progress{.steps_total = steps * count, .scans_total = count};
   std::mutex mutex;
-  const auto report_progress = [&](const std::string& scan, std::string_view what, std::size_t steps_done,
-                                   int scan_finished, bool failed) {
+  // `event` carries the scan, the kind and what goes with it; the counts are the batch's.
+  const auto report_progress = [&](Progress event, std::size_t steps_done) {
     const std::lock_guard lock(mutex);
     progress.steps_done = std::min(progress.steps_total, progress.steps_done + steps_done);
-    progress.scans_done += static_cast<std::size_t>(scan_finished);
-    progress.scans_failed += failed ? 1 : 0;
-    progress.scan = scan;
-    progress.what = what;
+    const bool finished = event.event != ProgressEvent::Step;
+    progress.scans_done += finished ? 1 : 0;
+    progress.scans_failed += event.event == ProgressEvent::Failed ? 1 : 0;
+    progress.scan = std::move(event.scan);
+    progress.event = event.event;
+    progress.step = std::move(event.step);
+    progress.seconds = event.seconds;
+    progress.failure = std::move(event.failure);
     if (request.progress) request.progress(progress);
   };
 
@@ -325,7 +396,7 @@ Report compare_scans(const CompareRequest& request) {
     std::size_t done = 0;
     const auto fail = [&](const Error& e) {
       out = ScanReport{.name = name, .source = source, .failure = e.to_string()};
-      report_progress(name, "failed: " + e.to_string(), steps - done, 1, true);
+      report_progress({.scan = name, .event = ProgressEvent::Failed, .failure = e.to_string()}, steps - done);
     };
     Mesh mesh;
     if (sample) {
@@ -337,7 +408,7 @@ Report compare_scans(const CompareRequest& request) {
     }
     Result<ScanReport> made = compare_scan(mesh, name, options, [&](std::string_view what) {
       ++done;
-      report_progress(name, what, 1, 0, false);
+      report_progress({.scan = name, .step = std::string(what)}, 1);
     });
     if (!made) {
       Error e = std::move(made).error();
@@ -346,8 +417,8 @@ Report compare_scans(const CompareRequest& request) {
     }
     out = *std::move(made);
     out.source = source;
-    report_progress(name, fmt::format("done in {:.1f} s", out.seconds), done < steps ? steps - done : 0, 1,
-                    false);
+    report_progress({.scan = name, .event = ProgressEvent::Done, .seconds = out.seconds},
+                    done < steps ? steps - done : 0);
   });
   report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
   return report;

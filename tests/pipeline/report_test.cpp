@@ -316,6 +316,22 @@ TEST(Compare, UnreadableAndFacelessScansAreReportedAndTheOthersGoOn) {
   EXPECT_EQ(seen.back().steps_done, seen.back().steps_total);
   for (std::size_t i = 1; i < seen.size(); ++i)
     EXPECT_GE(seen[i].steps_done, seen[i - 1].steps_done);
+  // Typed events: a failure carries its error as a field, never to be cut out of a sentence.
+  std::size_t failures = 0, done = 0;
+  for (const Progress& p : seen) {
+    if (p.event == ProgressEvent::Failed) {
+      ++failures;
+      EXPECT_FALSE(p.failure.empty());
+      EXPECT_EQ(p.what(), "failed: " + p.failure);
+    }
+    if (p.event == ProgressEvent::Done) {
+      ++done;
+      EXPECT_EQ(p.scan, "face.ply");
+      EXPECT_TRUE(p.what().starts_with("done in ")) << p.what();
+    }
+  }
+  EXPECT_EQ(failures, 2U);
+  EXPECT_EQ(done, 1U);
   const std::string md = report_markdown(r);
   EXPECT_NE(md.find("## broken.ply: failed"), std::string::npos) << md;
   EXPECT_NE(md.find("3 scans (2 failed)"), std::string::npos) << md;

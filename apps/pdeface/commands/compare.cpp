@@ -31,12 +31,12 @@ class ProgressPrinter {
 public:
   explicit ProgressPrinter(bool quiet) : quiet_(quiet), terminal_(isatty(fileno(stderr)) != 0) {}
   void operator()(const pipeline::Progress& p) {
-    const bool failed = p.what.starts_with("failed: ");
+    const bool failed = p.event == pipeline::ProgressEvent::Failed;
     if (quiet_ || !terminal_) {
       if (failed) // always said
-        fmt::print(stderr, "pdeface: error: {}\n", p.what.substr(8));
-      else if (!quiet_ && p.what.starts_with("done"))
-        fmt::print(stderr, "pdeface: [{}/{}] {}: {}\n", p.scans_done, p.scans_total, p.scan, p.what);
+        fmt::print(stderr, "pdeface: error: {}\n", p.failure);
+      else if (!quiet_ && p.event == pipeline::ProgressEvent::Done)
+        fmt::print(stderr, "pdeface: [{}/{}] {}: {}\n", p.scans_done, p.scans_total, p.scan, p.what());
       return;
     }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -48,13 +48,13 @@ public:
       const auto left = static_cast<int>(elapsed * (1.0 - share) / share);
       eta = fmt::format("{}:{:02}", left / 60, left % 60);
     }
-    std::string what = p.scan + ": " + p.what;
+    std::string what = p.scan + ": " + p.what();
     if (what.size() > 40) what = what.substr(0, 39) + "…";
     fmt::print(stderr, "\r[{}{}] {}/{} scans{} {:3.0f} %  ETA {}  {:<41}", std::string(filled, '#'),
                std::string(30 - filled, ' '), p.scans_done, p.scans_total,
                p.scans_failed ? fmt::format(" ({} failed)", p.scans_failed) : std::string(), 100.0 * share,
                eta, what);
-    if (failed) fmt::print(stderr, "\npdeface: error: {}\n", p.what.substr(8));
+    if (failed) fmt::print(stderr, "\npdeface: error: {}\n", p.failure);
     if (p.scans_done == p.scans_total) fmt::print(stderr, "\n");
   }
 

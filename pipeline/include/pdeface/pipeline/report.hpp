@@ -106,12 +106,24 @@ struct ScanReport {
   double seconds = 0.0;
 };
 
+//! What happened to the scan a progress event is about.
+enum class ProgressEvent {
+  Step,   //!< a step finished (`Progress::step`: "aligned", "draco 11 bits", ...)
+  Done,   //!< the scan is compared (`Progress::seconds`)
+  Failed, //!< the scan could not be compared (`Progress::failure`)
+};
+
 //! Where a batch is (`compare_scans` reports through a callback; drawing it is the caller's business).
 struct Progress {
   std::size_t steps_done = 0, steps_total = 0; //!< variants measured, over every scan
   std::size_t scans_done = 0, scans_total = 0, scans_failed = 0;
   std::string scan; //!< the scan the event is about
-  std::string what; //!< "aligned", "draco 11 bits", "done", "failed: ..."
+  ProgressEvent event = ProgressEvent::Step;
+  std::string step;     //!< Step: the step that finished
+  double seconds = 0.0; //!< Done: the time the scan took
+  std::string failure;  //!< Failed: why (`Error::to_string`, naming the scan's file)
+  //! The event in words: the step, "done in 8.6 s" or "failed: <failure>".
+  [[nodiscard]] std::string what() const;
 };
 using ProgressCallback = std::function<void(const Progress&)>;
 
