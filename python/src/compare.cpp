@@ -4,11 +4,11 @@
 
 #include "bindings.hpp"
 
-#include "pdeface/compare/report.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/names.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/pipeline/report.hpp"
 
 #include <nlohmann/json.hpp>
 #include <pybind11/stl.h>
@@ -35,7 +35,7 @@ metrics::DistanceStats stats_from(const json& j) {
           j.at(4).get<std::size_t>()};
 }
 
-json variant_json(const compare::Variant& v) {
+json variant_json(const pipeline::Variant& v) {
   json j{{"method", static_cast<int>(v.method)},
          {"name", v.name},
          {"extension", v.extension},
@@ -65,26 +65,26 @@ std::string bytes_of(const json& j) {
   return {b.begin(), b.end()};
 }
 
-compare::Variant variant_from(const json& j) {
-  compare::Variant v{.method = static_cast<compare::Method>(j.at("method").get<int>()),
-                     .name = j.at("name"),
-                     .extension = j.at("extension"),
-                     .bits = j.at("bits"),
-                     .budget = j.at("budget"),
-                     .ratio = j.at("ratio"),
-                     .lossless = j.at("lossless"),
-                     .bytes = j.at("bytes"),
-                     .ratio_to_ply = j.at("ratio_to_ply"),
-                     .encode_ms = j.at("encode_ms"),
-                     .decode_ms = j.at("decode_ms"),
-                     .vertices = j.at("vertices"),
-                     .triangles = j.at("triangles"),
-                     .failure = j.at("failure"),
-                     .encoded = bytes_of(j.at("encoded"))};
+pipeline::Variant variant_from(const json& j) {
+  pipeline::Variant v{.method = static_cast<pipeline::Method>(j.at("method").get<int>()),
+                      .name = j.at("name"),
+                      .extension = j.at("extension"),
+                      .bits = j.at("bits"),
+                      .budget = j.at("budget"),
+                      .ratio = j.at("ratio"),
+                      .lossless = j.at("lossless"),
+                      .bytes = j.at("bytes"),
+                      .ratio_to_ply = j.at("ratio_to_ply"),
+                      .encode_ms = j.at("encode_ms"),
+                      .decode_ms = j.at("decode_ms"),
+                      .vertices = j.at("vertices"),
+                      .triangles = j.at("triangles"),
+                      .failure = j.at("failure"),
+                      .encoded = bytes_of(j.at("encoded"))};
   if (j.contains("fidelity")) {
     const json& f = j.at("fidelity");
     v.fidelity =
-        compare::MeshFidelity{.coverage = {.share = f.at("share"), .distance = stats_from(f.at("mask"))},
+        metrics::MeshFidelity{.coverage = {.share = f.at("share"), .distance = stats_from(f.at("mask"))},
                               .to_scan = stats_from(f.at("to_scan")),
                               .profile_error = f.at("profile"),
                               .mean_profile_error = f.at("profile_mean")};
@@ -92,11 +92,11 @@ compare::Variant variant_from(const json& j) {
   return v;
 }
 
-std::string scan_state(const compare::ScanReport& s) {
+std::string scan_state(const pipeline::ScanReport& s) {
   json variants = json::array(), heat_maps = json::array();
-  for (const compare::Variant& v : s.variants)
+  for (const pipeline::Variant& v : s.variants)
     variants.push_back(variant_json(v));
-  for (const compare::HeatMap& h : s.heat_maps)
+  for (const pipeline::HeatMap& h : s.heat_maps)
     heat_maps.push_back({{"variant", h.variant},
                          {"file", h.file},
                          {"glb", json::binary(std::vector<std::uint8_t>(h.glb.begin(), h.glb.end()))},
@@ -118,18 +118,18 @@ std::string scan_state(const compare::ScanReport& s) {
   return {cbor.begin(), cbor.end()};
 }
 
-compare::ScanReport scan_from_state(const std::string& state) {
+pipeline::ScanReport scan_from_state(const std::string& state) {
   const json j = json::from_cbor(state);
-  compare::ScanReport s{.name = j.at("name"),
-                        .source = j.at("source"),
-                        .units = static_cast<Units>(j.at("units").get<int>()),
-                        .units_per_mm = j.at("units_per_mm"),
-                        .vertices = j.at("vertices"),
-                        .triangles = j.at("triangles"),
-                        .face_only = j.at("face_only"),
-                        .ply_bytes = j.at("ply_bytes"),
-                        .failure = j.at("failure"),
-                        .seconds = j.at("seconds")};
+  pipeline::ScanReport s{.name = j.at("name"),
+                         .source = j.at("source"),
+                         .units = static_cast<Units>(j.at("units").get<int>()),
+                         .units_per_mm = j.at("units_per_mm"),
+                         .vertices = j.at("vertices"),
+                         .triangles = j.at("triangles"),
+                         .face_only = j.at("face_only"),
+                         .ply_bytes = j.at("ply_bytes"),
+                         .failure = j.at("failure"),
+                         .seconds = j.at("seconds")};
   for (const json& v : j.at("variants"))
     s.variants.push_back(variant_from(v));
   for (const json& h : j.at("heat_maps"))
@@ -143,8 +143,8 @@ compare::ScanReport scan_from_state(const std::string& state) {
 
 // ---- Options from keyword arguments (the command's defaults).
 
-compare::CompareOptions options_from(const py::dict& kwargs) {
-  compare::CompareOptions o;
+pipeline::CompareOptions options_from(const py::dict& kwargs) {
+  pipeline::CompareOptions o;
   for (const auto& [key, value] : kwargs) {
     const std::string k = py::str(key);
     if (k == "ratios")
@@ -189,15 +189,15 @@ compare::CompareOptions options_from(const py::dict& kwargs) {
 }
 
 // One scan file, as `compare_scans` treats each: read, compared, or a report that says why not.
-compare::ScanReport compare_file(const fs::path& path, const std::string& name,
-                                 const compare::CompareOptions& o) {
+pipeline::ScanReport compare_file(const fs::path& path, const std::string& name,
+                                  const pipeline::CompareOptions& o) {
   const py::gil_scoped_release release;
   const auto failed = [&](const Error& e) {
-    return compare::ScanReport{.name = name, .source = path.string(), .failure = e.to_string()};
+    return pipeline::ScanReport{.name = name, .source = path.string(), .failure = e.to_string()};
   };
   Result<formats::LoadedMesh> loaded = formats::read_mesh(path);
   if (!loaded) return failed(loaded.error());
-  Result<compare::ScanReport> made = compare::compare_scan(loaded->mesh, name, o);
+  Result<pipeline::ScanReport> made = pipeline::compare_scan(loaded->mesh, name, o);
   if (!made) {
     Error e = std::move(made).error();
     e.source = path.string();
@@ -209,8 +209,8 @@ compare::ScanReport compare_file(const fs::path& path, const std::string& name,
 
 // The report folder as `pdeface compare --out` writes it: every file or none, and the folders made for
 // them removed again (when still empty) if the files cannot be written.
-void write_report(const compare::Report& report, const fs::path& folder) {
-  const std::vector<OutputFile> files = compare::report_files(report, folder);
+void write_report(const pipeline::Report& report, const fs::path& folder) {
+  const std::vector<OutputFile> files = pipeline::report_files(report, folder);
   std::vector<fs::path> made;
   for (const OutputFile& f : files) {
     std::vector<fs::path> missing;
@@ -235,11 +235,11 @@ void write_report(const compare::Report& report, const fs::path& folder) {
   unwrap(std::move(written));
 }
 
-py::list csv_rows(const compare::Report& report) {
+py::list csv_rows(const pipeline::Report& report) {
   const py::module_ csv = py::module_::import("csv");
   const py::module_ io = py::module_::import("io");
   py::list rows;
-  for (const py::handle& row : csv.attr("DictReader")(io.attr("StringIO")(compare::report_csv(report)))) {
+  for (const py::handle& row : csv.attr("DictReader")(io.attr("StringIO")(pipeline::report_csv(report)))) {
     py::dict d;
     for (const auto& [key, value] : row.cast<py::dict>()) {
       const std::string k = py::str(key), text = py::str(value);
@@ -262,29 +262,29 @@ py::list csv_rows(const compare::Report& report) {
 } // namespace
 
 void bind_compare(py::module_& m) {
-  py::class_<compare::ScanReport>(m, "ScanReport",
-                                  "One scan's comparison: every variant measured, or why not")
-      .def_readonly("name", &compare::ScanReport::name)
-      .def_readonly("source", &compare::ScanReport::source)
-      .def_readonly("failure", &compare::ScanReport::failure, "empty when the scan was compared")
-      .def_readonly("seconds", &compare::ScanReport::seconds)
+  py::class_<pipeline::ScanReport>(m, "ScanReport",
+                                   "One scan's comparison: every variant measured, or why not")
+      .def_readonly("name", &pipeline::ScanReport::name)
+      .def_readonly("source", &pipeline::ScanReport::source)
+      .def_readonly("failure", &pipeline::ScanReport::failure, "empty when the scan was compared")
+      .def_readonly("seconds", &pipeline::ScanReport::seconds)
       .def_property_readonly(
-          "variants", [](const compare::ScanReport& s) { return s.variants.size(); },
+          "variants", [](const pipeline::ScanReport& s) { return s.variants.size(); },
           "how many variants were measured")
       .def("__repr__",
-           [](const compare::ScanReport& s) {
+           [](const pipeline::ScanReport& s) {
              return "<pdeface.ScanReport " + s.name + ": " +
                     (s.failure.empty() ? std::to_string(s.variants.size()) + " variants"
                                        : "failed: " + s.failure) +
                     ">";
            })
-      .def(py::pickle([](const compare::ScanReport& s) { return py::bytes(scan_state(s)); },
+      .def(py::pickle([](const pipeline::ScanReport& s) { return py::bytes(scan_state(s)); },
                       [](const py::bytes& state) { return scan_from_state(state); }));
 
   m.def(
       "compare_file",
       [](const py::object& path, const std::string& name, const py::kwargs& kwargs) {
-        const compare::CompareOptions o = options_from(kwargs);
+        const pipeline::CompareOptions o = options_from(kwargs);
         return compare_file(to_path(path), name, o);
       },
       py::arg("path"), py::arg("name"),
@@ -292,9 +292,9 @@ void bind_compare(py::module_& m) {
       "with its failure, not an exception");
   m.def(
       "write_report",
-      [](const std::vector<compare::ScanReport>& scans, const py::object& out, double seconds,
+      [](const std::vector<pipeline::ScanReport>& scans, const py::object& out, double seconds,
          const py::kwargs& kwargs) {
-        const compare::Report report{.scans = scans, .options = options_from(kwargs), .seconds = seconds};
+        const pipeline::Report report{.scans = scans, .options = options_from(kwargs), .seconds = seconds};
         write_report(report, to_path(out));
         return csv_rows(report);
       },
@@ -303,16 +303,16 @@ void bind_compare(py::module_& m) {
       "written as one set; returns the CSV's rows");
   m.def(
       "expand_inputs",
-      [](const std::vector<fs::path>& inputs) { return unwrap(compare::expand_inputs(inputs)); },
+      [](const std::vector<fs::path>& inputs) { return unwrap(pipeline::expand_inputs(inputs)); },
       py::arg("inputs"), "Scan files, folders expanded to the mesh files in them (sorted)");
   m.def(
       "compare",
       [](const std::vector<fs::path>& inputs, const std::optional<fs::path>& out, const py::kwargs& kwargs) {
-        const compare::CompareOptions o = options_from(kwargs);
-        std::vector<fs::path> files = unwrap(compare::expand_inputs(inputs));
-        const compare::Report report = [&] {
+        const pipeline::CompareOptions o = options_from(kwargs);
+        std::vector<fs::path> files = unwrap(pipeline::expand_inputs(inputs));
+        const pipeline::Report report = [&] {
           const py::gil_scoped_release release;
-          return compare::compare_scans({.inputs = std::move(files), .options = o});
+          return pipeline::compare_scans({.inputs = std::move(files), .options = o});
         }();
         if (out) write_report(report, *out);
         return csv_rows(report);

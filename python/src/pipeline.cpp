@@ -6,10 +6,10 @@
 #include "pdeface/align/detect.hpp"
 #include "pdeface/align/landmarks.hpp"
 #include "pdeface/align/pipeline.hpp"
-#include "pdeface/compare/encode.hpp"
-#include "pdeface/compare/pipeline.hpp"
 #include "pdeface/core/names.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/requests.hpp"
 
 #include <nlohmann/json.hpp>
 #include <pybind11/eigen.h>
@@ -138,36 +138,36 @@ py::dict detect(const Mesh& mesh, const std::string& source) {
 
 py::object profiles(const Mesh& mesh, const CurveArgs& curves, const py::object& landmarks,
                     const std::string& source) {
-  const compare::ProfilesRequest request{
+  const pipeline::ProfilesRequest request{
       .landmarks = landmark_source(landmarks), .profiles = curves.profiles(), .source = source};
-  Result<compare::ProfilesOutcome> out = [&] {
+  Result<pipeline::ProfilesOutcome> out = [&] {
     const py::gil_scoped_release release;
-    return compare::profiles_request(mesh, request);
+    return pipeline::profiles_request(mesh, request);
   }();
-  const compare::ProfilesOutcome made = unwrap(std::move(out));
+  const pipeline::ProfilesOutcome made = unwrap(std::move(out));
   warn(made.profiles.missing);
   return py::module_::import("json").attr("loads")(made.json);
 }
 
 Mesh reconstruct(const Mesh& mesh, const CurveArgs& curves, const py::object& resolution,
                  const py::object& landmarks, bool force, const std::string& source) {
-  compare::ReconstructRequest request{
+  pipeline::ReconstructRequest request{
       .landmarks = landmark_source(landmarks), .source = source, .force = force};
   request.options.profiles = curves.profiles();
   request.options.pde = curves.pde();
   if (!resolution.is_none()) {
     if (py::isinstance<py::int_>(resolution)) {
-      request.options.resolution = compare::Resolution{0, resolution.cast<std::size_t>()};
+      request.options.resolution = pipeline::Resolution{0, resolution.cast<std::size_t>()};
     } else {
       const auto uv = resolution.cast<std::pair<std::size_t, std::size_t>>();
-      request.options.resolution = compare::Resolution{uv.first, uv.second};
+      request.options.resolution = pipeline::Resolution{uv.first, uv.second};
     }
   }
-  Result<compare::ReconstructOutcome> out = [&] {
+  Result<pipeline::ReconstructOutcome> out = [&] {
     const py::gil_scoped_release release;
-    return compare::reconstruct_request(mesh, request);
+    return pipeline::reconstruct_request(mesh, request);
   }();
-  compare::ReconstructOutcome made = unwrap(std::move(out));
+  pipeline::ReconstructOutcome made = unwrap(std::move(out));
   warn(made.reconstruction.profiles.missing);
   if (!made.check.passed()) warn({"self-check failed, returned anyway (force): " + made.check.summary()});
   return std::move(made.reconstruction.scan);
@@ -178,19 +178,19 @@ py::bytes encode(const Mesh& mesh, const CurveArgs& curves, double max_error, bo
                  const std::string& source) {
   if (max_error < 0.001 || max_error > 10.0)
     throw py::value_error("max_error must be within 0.001 and 10 mm");
-  const compare::EncodeRequest request{.landmarks = landmark_source(landmarks),
-                                       .profiles = curves.profiles(),
-                                       .pde = curves.pde(),
-                                       .encoding = {.lossless = lossless, .max_error_mm = max_error},
-                                       .store_landmarks = store_landmarks,
-                                       .name = name,
-                                       .source = source,
-                                       .force = force};
-  Result<compare::EncodeOutcome> out = [&] {
+  const pipeline::EncodeRequest request{.landmarks = landmark_source(landmarks),
+                                        .profiles = curves.profiles(),
+                                        .pde = curves.pde(),
+                                        .encoding = {.lossless = lossless, .max_error_mm = max_error},
+                                        .store_landmarks = store_landmarks,
+                                        .name = name,
+                                        .source = source,
+                                        .force = force};
+  Result<pipeline::EncodeOutcome> out = [&] {
     const py::gil_scoped_release release;
-    return compare::encode_request(mesh, request);
+    return pipeline::encode_request(mesh, request);
   }();
-  compare::EncodeOutcome made = unwrap(std::move(out));
+  pipeline::EncodeOutcome made = unwrap(std::move(out));
   warn(made.profiles.missing);
   if (made.check && !made.check->passed())
     warn({"self-check failed, returned anyway (force): " + made.check->summary()});

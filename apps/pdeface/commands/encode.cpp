@@ -21,14 +21,14 @@ struct EncodeArgs {
 int run_encode(const EncodeArgs& args) {
   Result<align::LandmarkSource> landmarks = landmark_source(args.curves.landmarks);
   if (!landmarks) return fail(landmarks.error());
-  compare::EncodeRequest request{.landmarks = *std::move(landmarks),
-                                 .profiles = args.curves.profile_options(),
-                                 .pde = args.surface.pde_options(),
-                                 .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
-                                 .store_landmarks = args.store_landmarks,
-                                 .name = args.name,
-                                 .source = args.in.string(),
-                                 .force = args.force};
+  pipeline::EncodeRequest request{.landmarks = *std::move(landmarks),
+                                  .profiles = args.curves.profile_options(),
+                                  .pde = args.surface.pde_options(),
+                                  .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
+                                  .store_landmarks = args.store_landmarks,
+                                  .name = args.name,
+                                  .source = args.in.string(),
+                                  .force = args.force};
   return encode_scan(args.in, args.out, request);
 }
 
