@@ -19,10 +19,10 @@
 
 #include "pdeface/align/detect.hpp"
 #include "pdeface/align/frame.hpp"
-#include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/pde/mesher.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/slice/profiles.hpp"
 
 #include "../tests/pde/synthetic_face.hpp"
@@ -81,7 +81,7 @@ const AlignedScan* aligned_scan(std::string& why) {
 }
 
 const pde::Options& reconstruct_options() {
-  static const pde::Options options = compare::ReconstructOptions{}.pde; // spline, physical spacing
+  static const pde::Options options = pipeline::ReconstructOptions{}.pde; // spline, physical spacing
   return options;
 }
 
@@ -97,12 +97,12 @@ std::optional<RealCase> make_real_case(std::int64_t percent, std::string& why) {
   if (!a) return std::nullopt;
   slice::ProfileOptions options;
   options.ratio = static_cast<double>(percent) / 100.0;
-  auto profiles = compare::extract_profiles(compare::canonical_scan(a->scan, a->alignment), options);
+  auto profiles = pipeline::extract_profiles(pipeline::canonical_scan(a->scan, a->alignment), options);
   if (!profiles) {
     why = profiles.error().to_string();
     return std::nullopt;
   }
-  Curves curves = compare::to_curves(*profiles);
+  Curves curves = pipeline::to_curves(*profiles);
   auto surface = Surface::build(curves, reconstruct_options());
   if (!surface) {
     why = surface.error().to_string();

@@ -10,13 +10,13 @@
 // both ways too. pdef_to_mesh_sse2 forces the mesher's narrowest vectors: what a processor without AVX2
 // gets (the mesh is the same to the bit).
 
-#include "pdeface/compare/encode.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/draco/draco.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/pde/mesher.hpp"
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
+#include "pdeface/pipeline/encode.hpp"
 
 #include "bench_support.hpp"
 
@@ -58,16 +58,16 @@ const Corpus& corpus() {
       out.origin = "sample face";
     }
     out.scan_vertices = scan.vertex_count();
-    compare::EncodeRequest request;
+    pipeline::EncodeRequest request;
     request.source = out.origin;
-    out.lossy = compare::encode_request(scan, request).value().encoded.bytes;
+    out.lossy = pipeline::encode_request(scan, request).value().encoded.bytes;
     for (const std::size_t size : kResidualSizes) {
       request.residual.size_bytes = size;
-      out.residual[size] = compare::encode_request(scan, request).value().encoded.bytes;
+      out.residual[size] = pipeline::encode_request(scan, request).value().encoded.bytes;
     }
     request.residual = {};
     request.encoding.lossless = true;
-    out.lossless = compare::encode_request(scan, request).value().encoded.bytes;
+    out.lossless = pipeline::encode_request(scan, request).value().encoded.bytes;
     out.draco = pdeface::draco::write(scan, {.position_bits = 11, .level = 7}).value();
     std::fprintf(
         stderr, "pdef_bench: %s (%zu vertices): .pdef %zu bytes lossy, %zu lossless; Draco %zu bytes\n",

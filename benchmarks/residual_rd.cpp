@@ -4,12 +4,12 @@
 // `pdeface compare` measures them, with the layer's decode time.
 
 #include "pdeface/align/pipeline.hpp"
-#include "pdeface/compare/encode.hpp"
-#include "pdeface/compare/fidelity.hpp"
-#include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/metrics/fidelity.hpp"
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/residual.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/residual/measure.hpp"
 
 #include <fmt/format.h>
@@ -47,12 +47,12 @@ int main(int argc, char** argv) {
       fmt::print("{}: {}\n", path, alignment.error().to_string());
       continue;
     }
-    const compare::CanonicalScan canonical = compare::canonical_scan(scan, *alignment);
-    Result<slice::ProfileSet> profiles = compare::extract_profiles(canonical);
-    Result<compare::FaceYardstick> yardstick = compare::FaceYardstick::make(canonical.mesh, *profiles);
-    compare::EncodeRequest request;
+    const pipeline::CanonicalScan canonical = pipeline::canonical_scan(scan, *alignment);
+    Result<slice::ProfileSet> profiles = pipeline::extract_profiles(canonical);
+    Result<metrics::FaceYardstick> yardstick = metrics::FaceYardstick::make(canonical.mesh, *profiles);
+    pipeline::EncodeRequest request;
     request.check.reset();
-    Result<compare::EncodeOutcome> made = compare::encode_aligned(scan, *alignment, request);
+    Result<pipeline::EncodeOutcome> made = pipeline::encode_aligned(scan, *alignment, request);
     if (!made || !yardstick) {
       fmt::print("{}: failed\n", path);
       continue;
@@ -82,7 +82,7 @@ int main(int argc, char** argv) {
       auto m = std::chrono::steady_clock::now();
       Result<Mesh> mesh = pdef::to_mesh(*f);
       auto e = std::chrono::steady_clock::now();
-      Result<compare::MeshFidelity> fid = yardstick->measure(align::to_canonical(*mesh, canonical.frame));
+      Result<metrics::MeshFidelity> fid = yardstick->measure(align::to_canonical(*mesh, canonical.frame));
       fmt::print("  {:>8} {:>6} B  to scan mean {:.4f} p95 {:.4f} max {:.3f}  mask mean {:.4f} cov {:.1f} %"
                  "  parse {:.2f} ms, mesh {:.2f} ms ({} v)\n",
                  label, bytes.size(), fid->to_scan.mean, fid->to_scan.p95, fid->to_scan.max,

@@ -5,9 +5,9 @@
 
 #include "checks.hpp"
 
-#include "pdeface/compare/encode.hpp"
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
+#include "pdeface/pipeline/encode.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -23,11 +23,11 @@ namespace formats = pdeface::formats;
 constexpr std::size_t kMaxEncodedVertices = 3000;
 
 void encode_and_decode(const pdeface::Mesh& mesh) {
-  pdeface::compare::EncodeRequest request;
+  pdeface::pipeline::EncodeRequest request;
   request.name = mesh.name; // any bytes: the encoder makes them valid UTF-8
   request.source = "fuzz";
-  const pdeface::Result<pdeface::compare::EncodeOutcome> made =
-      pdeface::compare::encode_request(mesh, request);
+  const pdeface::Result<pdeface::pipeline::EncodeOutcome> made =
+      pdeface::pipeline::encode_request(mesh, request);
   if (!made) return fuzz::check_error(made.error(), SIZE_MAX);
   const std::string& bytes = made->encoded.bytes;
   const pdeface::Result<pdeface::pdef::Face> face = pdeface::pdef::decode(bytes, "fuzz.pdef");

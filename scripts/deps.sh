@@ -8,6 +8,8 @@ packages=(
   libtinyobjloader-dev libfast-float-dev libstb-dev nlohmann-json3-dev libnanoflann-dev
   libmeshoptimizer-dev zlib1g-dev libzstd-dev libutfcpp-dev
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
+  # The Python module (python/): pybind11, numpy; its tests and Dask batch: pytest, Dask distributed.
+  python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed
 )
 # The tests also run the Khronos glTF validator on node (from Debian unless node is already there).
 if [[ "${1:-}" == "--test" ]] && ! { command -v node && command -v npm; } >/dev/null; then

@@ -11,6 +11,6 @@ echo "pdeface: clang-format on ${#sources[@]} files" >&2
 clang-format --dry-run --Werror "${sources[@]}"
 [[ "${1:-}" == "--format-only" ]] && exit 0
 [[ -f build/compile_commands.json ]] || { echo "pdeface: no build/compile_commands.json; build first" >&2; exit 2; }
-echo "pdeface: clang-tidy on modules/, formats/, apps/" >&2
-run-clang-tidy -p build -j "$(nproc)" -quiet "$root/(modules|formats|apps)/.*\\.cpp\$" >build/clang-tidy.log 2>&1 ||
+echo "pdeface: clang-tidy on modules/, formats/, pipeline/, apps/" >&2
+run-clang-tidy -p build -j "$(nproc)" -quiet "$root/(modules|formats|pipeline|apps)/.*\\.cpp\$" >build/clang-tidy.log 2>&1 ||
   { grep -E "(warning|error):" build/clang-tidy.log | sort -u >&2; echo "pdeface: clang-tidy failed (build/clang-tidy.log)" >&2; exit 1; }

@@ -255,11 +255,7 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
     }
     return make_error(ErrorCode::UnsupportedFormat, "unknown format", source);
   }();
-  if (!bytes) {
-    Error e = std::move(bytes).error();
-    if (e.source.empty()) e.source = source;
-    return e;
-  }
+  if (!bytes) return with_source(std::move(bytes).error(), source);
   return bytes;
 }
 

@@ -45,7 +45,9 @@ TEST(DetectBounds, AFaceAtAbsurdScales) {
   // Without units, the scale is the face's own: found, or no face, but in bounded time and memory.
   for (double by : {1e6, 1e12, 1e-12}) {
     const Result<Detection> d = detect_landmarks(scaled(face, by));
-    if (!d) EXPECT_EQ(d.error().code, ErrorCode::NoFace) << by << ": " << d.error().to_string();
+    if (!d) {
+      EXPECT_EQ(d.error().code, ErrorCode::NoFace) << by << ": " << d.error().to_string();
+    }
   }
   // Stated in millimetres, a face a kilometre wide is none.
   expect_no_face(detect_landmarks(scaled(face, 1e4, Units::Millimetres)), "more than any face scan");
@@ -58,7 +60,9 @@ TEST(DetectBounds, APointCloudAtAnAbsurdScale) {
   Mesh cloud = scaled(sample_face({.spacing_mm = 2.5, .colors = false}), 1e9);
   cloud.triangles.clear();
   const Result<Detection> d = detect_landmarks(cloud);
-  if (!d) EXPECT_EQ(d.error().code, ErrorCode::NoFace) << d.error().to_string();
+  if (!d) {
+    EXPECT_EQ(d.error().code, ErrorCode::NoFace) << d.error().to_string();
+  }
 }
 
 } // namespace

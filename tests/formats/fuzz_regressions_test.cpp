@@ -98,7 +98,9 @@ TEST_P(FuzzFinding, ReadsAsItShouldAndRoundTrips) {
                     c = m.positions[t[2]].cast<float>();
         return a != b && b != c && a != c;
       }));
-    if (format.format != Format::Draco) EXPECT_EQ(back->mesh.triangle_count(), triangles) << format.name;
+    if (format.format != Format::Draco) {
+      EXPECT_EQ(back->mesh.triangle_count(), triangles) << format.name;
+    }
   }
   // Draco at level 0 (vertex order kept) and inside a GLB: refused with a clear error, or read back.
   for (const auto& [name, options] : {std::pair{"again0.drc", WriteOptions{.draco_level = 0}},
@@ -111,7 +113,7 @@ TEST_P(FuzzFinding, ReadsAsItShouldAndRoundTrips) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Fuzz, FuzzFinding, ::testing::ValuesIn(kFindings),
-                         [](const auto& info) { return test::test_name(info.param.file); });
+                         [](const auto& param) { return test::test_name(param.param.file); });
 
 } // namespace
 } // namespace pdeface::formats

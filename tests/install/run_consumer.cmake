@@ -1,5 +1,7 @@
-# Installs the build into a fresh prefix, then configures, builds and runs the consumer project against it.
+# Installs the build into a fresh prefix, then configures, builds and runs the consumer project against it,
+# and imports the Python package from the prefix when the module was built.
 # -DBUILD=<pdeface build dir> -DSOURCE=<tests/install/consumer> -DWORK=<scratch dir>
+# [-DPYTHON=<interpreter> -DPYTHON_DIR=<package dir under the prefix> -DFACE=<a scan to read>]
 file(REMOVE_RECURSE ${WORK})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix
                 RESULT_VARIABLE rc OUTPUT_QUIET)
@@ -29,4 +31,32 @@ foreach(h ${headers})
     message(FATAL_ERROR "${h} includes a third-party internal header: ${lines}")
   endif()
 endforeach()
+# The Python package from the prefix alone: `import pdeface` and a scan read into numpy.
+if(PYTHON)
+  set(script "import pdeface, numpy, sys; m = pdeface.read(sys.argv[1]) if sys.argv[1:] else pdeface.Mesh(numpy.eye(3), [[0, 1, 2]]); print(pdeface.__file__, m.vertices.shape)")
+  set(face_arg "")
+  if(EXISTS "${FACE}")
+    set(face_arg "${FACE}")
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK}/prefix/${PYTHON_DIR} ${PYTHON} -c "${script}" ${face_arg}
+                  WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(rc OR NOT out MATCHES "^${WORK}/prefix/")
+    message(FATAL_ERROR "importing the installed Python package failed (${rc}): ${out}")
+  endif()
+  message(STATUS "installed Python package: ${out}")
+endif()
+# The Python package from the prefix alone: `import pdeface` and a scan read into numpy.
+if(PYTHON)
+  set(script "import pdeface, numpy, sys; m = pdeface.read(sys.argv[1]) if sys.argv[1:] else pdeface.Mesh(numpy.eye(3), [[0, 1, 2]]); print(pdeface.__file__, m.vertices.shape)")
+  set(face_arg "")
+  if(EXISTS "${FACE}")
+    set(face_arg "${FACE}")
+  endif()
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env PYTHONPATH=${WORK}/prefix/${PYTHON_DIR} ${PYTHON} -c "${script}" ${face_arg}
+                  WORKING_DIRECTORY ${WORK} RESULT_VARIABLE rc OUTPUT_VARIABLE out)
+  if(rc OR NOT out MATCHES "^${WORK}/prefix/")
+    message(FATAL_ERROR "importing the installed Python package failed (${rc}): ${out}")
+  endif()
+  message(STATUS "installed Python package: ${out}")
+endif()
 file(REMOVE_RECURSE ${WORK})

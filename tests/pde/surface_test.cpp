@@ -468,9 +468,9 @@ TEST(PdeSurface, MeshIsARegularGridWithOutwardNormals) {
 
 TEST(PdeSurface, SchemeNames) {
   for (Scheme s : {Scheme::Spline, Scheme::Paper, Scheme::Patch4})
-    EXPECT_EQ(scheme_from_string(to_string(s)), s);
-  EXPECT_EQ(scheme_from_string("Spline"), std::nullopt);
-  EXPECT_EQ(scheme_from_string(""), std::nullopt);
+    EXPECT_EQ(value_named<Scheme>(kSchemeNames, to_string(s)), s);
+  EXPECT_EQ(value_named<Scheme>(kSchemeNames, "Spline"), std::nullopt);
+  EXPECT_EQ(value_named<Scheme>(kSchemeNames, ""), std::nullopt);
 }
 
 } // namespace

@@ -2,11 +2,11 @@
 // the bytes, a target error met as measured (the scans from $PDEFACE_DATA; skipped without them).
 
 #include "pdeface/align/pipeline.hpp"
-#include "pdeface/compare/encode.hpp"
-#include "pdeface/compare/fidelity.hpp"
-#include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/metrics/fidelity.hpp"
 #include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/residual/measure.hpp"
 
 #include "pdeface_test.hpp"
@@ -19,8 +19,8 @@ namespace {
 struct Scan {
   Mesh mesh;
   align::Alignment alignment;
-  compare::CanonicalScan canonical;
-  std::optional<compare::FaceYardstick> yardstick;
+  pipeline::CanonicalScan canonical;
+  std::optional<metrics::FaceYardstick> yardstick;
 };
 
 const Scan& f18(const std::filesystem::path& path) {
@@ -28,16 +28,16 @@ const Scan& f18(const std::filesystem::path& path) {
     Scan out;
     out.mesh = formats::read_mesh(path).value().mesh;
     out.alignment = align::align_scan(out.mesh, std::nullopt, "f18").value();
-    out.canonical = compare::canonical_scan(out.mesh, out.alignment);
+    out.canonical = pipeline::canonical_scan(out.mesh, out.alignment);
     out.yardstick =
-        compare::FaceYardstick::make(out.canonical.mesh, compare::extract_profiles(out.canonical).value())
+        metrics::FaceYardstick::make(out.canonical.mesh, pipeline::extract_profiles(out.canonical).value())
             .value();
     return out;
   }();
   return s;
 }
 
-compare::MeshFidelity measured(const Scan& s, const std::string& bytes) {
+metrics::MeshFidelity measured(const Scan& s, const std::string& bytes) {
   const pdef::Face face = pdef::decode(bytes).value();
   const Mesh mesh = pdef::to_mesh(face).value();
   return s.yardstick->measure(align::to_canonical(mesh, s.alignment.frame)).value();
@@ -46,26 +46,26 @@ compare::MeshFidelity measured(const Scan& s, const std::string& bytes) {
 TEST(ResidualRealScan, MoreBytesLessErrorAndEveryFileWithinItsSize) {
   PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
   const Scan& s = f18(path);
-  compare::EncodeRequest request;
+  pipeline::EncodeRequest request;
   request.check.reset();
-  const std::string curves = compare::encode_aligned(s.mesh, s.alignment, request).value().encoded.bytes;
-  compare::MeshFidelity previous = measured(s, curves);
+  const std::string curves = pipeline::encode_aligned(s.mesh, s.alignment, request).value().encoded.bytes;
+  metrics::MeshFidelity previous = measured(s, curves);
   std::printf("curves %zu B: mean %.4f p95 %.4f max %.3f\n", curves.size(), previous.to_scan.mean,
               previous.to_scan.p95, previous.to_scan.max);
   for (const std::size_t size : {2048, 8192, 32768}) {
     request.residual.size_bytes = size;
-    const compare::EncodeOutcome made = compare::encode_aligned(s.mesh, s.alignment, request).value();
+    const pipeline::EncodeOutcome made = pipeline::encode_aligned(s.mesh, s.alignment, request).value();
     ASSERT_LE(made.encoded.bytes.size(), size);
     EXPECT_GE(made.encoded.bytes.size(), size - 8) << "the budget is used";
     ASSERT_TRUE(made.residual);
     EXPECT_GT(made.residual->found_share, 0.97);
-    const compare::MeshFidelity f = measured(s, made.encoded.bytes);
+    const metrics::MeshFidelity f = measured(s, made.encoded.bytes);
     std::printf("%zu B: mean %.4f p95 %.4f max %.3f\n", size, f.to_scan.mean, f.to_scan.p95, f.to_scan.max);
     EXPECT_LT(f.to_scan.mean, 0.8 * previous.to_scan.mean) << size;
     EXPECT_LT(f.to_scan.p95, 0.8 * previous.to_scan.p95) << size;
     previous = f;
   }
-  // docs/compare.md: f18 at 32 KB lies about 0.005 mm from its scan on average, 0.02 mm at p95.
+  // docs/pipeline.md: f18 at 32 KB lies about 0.005 mm from its scan on average, 0.02 mm at p95.
   EXPECT_LT(previous.to_scan.mean, 0.01);
   EXPECT_LT(previous.to_scan.p95, 0.03);
 }
@@ -73,22 +73,22 @@ TEST(ResidualRealScan, MoreBytesLessErrorAndEveryFileWithinItsSize) {
 TEST(ResidualRealScan, ATargetErrorIsMetAsMeasuredWithFewBytes) {
   PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
   const Scan& s = f18(path);
-  compare::EncodeRequest request;
+  pipeline::EncodeRequest request;
   request.check.reset();
   request.residual.target_error_mm = 0.05;
-  const compare::EncodeOutcome made = compare::encode_aligned(s.mesh, s.alignment, request).value();
+  const pipeline::EncodeOutcome made = pipeline::encode_aligned(s.mesh, s.alignment, request).value();
   ASSERT_TRUE(made.residual && made.residual->measured);
-  const compare::MeshFidelity f = measured(s, made.encoded.bytes);
+  const metrics::MeshFidelity f = measured(s, made.encoded.bytes);
   EXPECT_LE(f.to_scan.p95, 0.05);
   EXPECT_EQ(f.to_scan.p95, made.residual->measured->to_scan.p95);
   // Fewest bytes: a file 10 % smaller misses the target.
   const std::size_t smaller = made.encoded.bytes.size() * 9 / 10;
   request.residual = {.size_bytes = smaller, .spacing_mm = made.residual->spacing_mm};
-  const compare::EncodeOutcome cut = compare::encode_aligned(s.mesh, s.alignment, request).value();
+  const pipeline::EncodeOutcome cut = pipeline::encode_aligned(s.mesh, s.alignment, request).value();
   EXPECT_GT(measured(s, cut.encoded.bytes).to_scan.p95, 0.05);
   // A target no layer meets is refused, saying what the whole layer reaches.
-  request.residual = {.target_error_mm = 0.0001, .target_measure = compare::TargetMeasure::Max};
-  const Result<compare::EncodeOutcome> missed = compare::encode_aligned(s.mesh, s.alignment, request);
+  request.residual = {.target_error_mm = 0.0001, .target_measure = pipeline::TargetMeasure::Max};
+  const Result<pipeline::EncodeOutcome> missed = pipeline::encode_aligned(s.mesh, s.alignment, request);
   ASSERT_FALSE(missed);
   EXPECT_EQ(missed.error().code, ErrorCode::SelfCheck);
 }
@@ -96,10 +96,10 @@ TEST(ResidualRealScan, ATargetErrorIsMetAsMeasuredWithFewBytes) {
 TEST(ResidualRealScan, TheOffsetsAreTheScansDistanceAlongTheNormal) {
   PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
   const Scan& s = f18(path);
-  compare::EncodeRequest request;
+  pipeline::EncodeRequest request;
   request.check.reset();
   const pdef::Face face =
-      pdef::decode(compare::encode_aligned(s.mesh, s.alignment, request).value().encoded.bytes).value();
+      pdef::decode(pipeline::encode_aligned(s.mesh, s.alignment, request).value().encoded.bytes).value();
   const pde::Surface surface = pdef::surface_of(face).value();
   const residual::Measured m = residual::measure(surface, s.canonical.mesh, 60, 80);
   const pde::NormalGrid g = pde::normal_grid(surface, 60, 80);

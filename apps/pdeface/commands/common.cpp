@@ -56,8 +56,14 @@ void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks) {
       ->check(CLI::ExistingFile);
 }
 
-void add_resolution(CLI::App* cmd, std::vector<std::size_t>& resolution) {
-  cmd->add_option("--resolution", resolution,
+std::optional<pipeline::Resolution> ResolutionArg::grid() const {
+  if (values.size() == 1) return pipeline::Resolution{0, values[0]};
+  if (values.size() == 2) return pipeline::Resolution{values[0], values[1]};
+  return std::nullopt;
+}
+
+void add_resolution(CLI::App* cmd, ResolutionArg& resolution) {
+  cmd->add_option("--resolution", resolution.values,
                   "Grid: V points along the face's height (across in proportion), or UxV; default about 1 mm "
                   "spacing")
       ->delimiter('x')
@@ -151,11 +157,11 @@ void print_holes_and_gaps(const slice::ProfileSet& set) {
 
 void add_force(CLI::App* cmd, bool& force) {
   cmd->add_flag("--force", force,
-                "Write the result even when its self-check against the scan fails (docs/compare.md, "
+                "Write the result even when its self-check against the scan fails (docs/pipeline.md, "
                 "\"Self-check\"), with a warning");
 }
 
-void print_check(const compare::SelfCheck& check) {
+void print_check(const metrics::SelfCheck& check) {
   if (check.passed())
     fmt::print("self-check on the face: {}\n", check.summary());
   else
@@ -164,7 +170,7 @@ void print_check(const compare::SelfCheck& check) {
 }
 
 int encode_scan(const std::filesystem::path& in, const std::filesystem::path& out,
-                const compare::EncodeRequest& request) {
+                const pipeline::EncodeRequest& request) {
   if (formats::format_from_path(out) != formats::Format::Pdef) {
     fmt::print(stderr,
                "pdeface: error: {}: the output of encode is a .pdef file (decode or reconstruct write "
@@ -174,7 +180,7 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
   }
   Result<formats::LoadedMesh> scan = read_scan(in);
   if (!scan) return fail(scan.error());
-  Result<compare::EncodeOutcome> made = compare::encode_request(scan->mesh, request);
+  Result<pipeline::EncodeOutcome> made = pipeline::encode_request(scan->mesh, request);
   if (!made) return fail(made.error());
   const std::array<OutputFile, 1> outputs{OutputFile{out, made->encoded.bytes}};
   if (Result<void> ok = write_outputs(outputs); !ok) return fail(ok.error());
@@ -193,7 +199,7 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
         "within {:.4f} mm of the original (at most {} mm)\n",
         out.string(), e.bytes.size(), e.step_mm, e.max_sample_error, e.max_surface_error,
         request.encoding.max_error_mm);
-  if (const std::optional<compare::ResidualOutcome>& r = made->residual) {
+  if (const std::optional<pipeline::ResidualOutcome>& r = made->residual) {
     fmt::print("residual layer: {} bytes ({} x {} grid at {} mm, the scan found at {:.1f} % of it; the whole "
                "stream {} bytes)\n",
                r->layer_bytes, r->width, r->height, r->spacing_mm, 100.0 * r->found_share, r->whole_stream);

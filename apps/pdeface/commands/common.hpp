@@ -3,12 +3,12 @@
 // outputs as a set, and the options several commands take.
 
 #include "pdeface/align/pipeline.hpp"
-#include "pdeface/compare/encode.hpp"
-#include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/names.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/slice/profiles.hpp"
 
 #include <CLI/CLI.hpp>
@@ -77,8 +77,14 @@ void add_input(CLI::App* cmd, std::filesystem::path& in, const std::string& desc
 void add_output(CLI::App* cmd, std::filesystem::path& out, const std::string& description);
 //! --landmarks: a landmark file to use instead of detecting them.
 void add_landmarks(CLI::App* cmd, std::filesystem::path& landmarks);
-//! --resolution V or UxV: the surface's grid (V along the face's height, U across).
-void add_resolution(CLI::App* cmd, std::vector<std::size_t>& resolution);
+//! --resolution V or UxV: the surface's grid (V along the face's height, U across), parsed here for every
+//! command that takes it.
+struct ResolutionArg {
+  std::vector<std::size_t> values; // as given: {v} or {u, v}
+  //! The grid asked for (u = 0: as many across as keep the cells square), or none: the default spacing.
+  [[nodiscard]] std::optional<pipeline::Resolution> grid() const;
+};
+void add_resolution(CLI::App* cmd, ResolutionArg& resolution);
 void add_write_options(CLI::App* cmd, formats::WriteOptions& write);
 
 //! How a scan becomes curves: landmarks given or detected, and the slicing options.
@@ -108,14 +114,14 @@ struct SurfaceArgs {
 void add_force(CLI::App* cmd, bool& force);
 //! The self-check of what was written: a warning on stderr when it failed (written with `--force`), else
 //! one line of its figures.
-void print_check(const compare::SelfCheck& check);
+void print_check(const metrics::SelfCheck& check);
 
 //! What slicing filled and what the scan lacks, as notes on stderr.
 void print_holes_and_gaps(const slice::ProfileSet& set);
 
-//! `pdeface encode` (and `convert scan face.pdef`): reads the scan, runs `compare::encode_request`, writes
+//! `pdeface encode` (and `convert scan face.pdef`): reads the scan, runs `pipeline::encode_request`, writes
 //! the document atomically and prints what it holds; the exit status. `out` must end in .pdef.
 int encode_scan(const std::filesystem::path& in, const std::filesystem::path& out,
-                const compare::EncodeRequest& request);
+                const pipeline::EncodeRequest& request);
 
 } // namespace pdeface::cli

@@ -3,7 +3,7 @@
 
 #include "common.hpp"
 
-#include "pdeface/compare/report.hpp"
+#include "pdeface/pipeline/report.hpp"
 
 #include <fmt/format.h>
 
@@ -17,7 +17,7 @@ namespace {
 struct CompareArgs {
   std::vector<fs::path> in;
   fs::path out = "pdeface-report";
-  compare::CompareOptions options;
+  pipeline::CompareOptions options;
   std::string scheme = "spline";
   bool lossy_only = false;
   bool lossless_only = false;
@@ -30,13 +30,13 @@ struct CompareArgs {
 class ProgressPrinter {
 public:
   explicit ProgressPrinter(bool quiet) : quiet_(quiet), terminal_(isatty(fileno(stderr)) != 0) {}
-  void operator()(const compare::Progress& p) {
-    const bool failed = p.what.starts_with("failed: ");
+  void operator()(const pipeline::Progress& p) {
+    const bool failed = p.event == pipeline::ProgressEvent::Failed;
     if (quiet_ || !terminal_) {
       if (failed) // always said
-        fmt::print(stderr, "pdeface: error: {}\n", p.what.substr(8));
-      else if (!quiet_ && p.what.starts_with("done"))
-        fmt::print(stderr, "pdeface: [{}/{}] {}: {}\n", p.scans_done, p.scans_total, p.scan, p.what);
+        fmt::print(stderr, "pdeface: error: {}\n", p.failure);
+      else if (!quiet_ && p.event == pipeline::ProgressEvent::Done)
+        fmt::print(stderr, "pdeface: [{}/{}] {}: {}\n", p.scans_done, p.scans_total, p.scan, p.what());
       return;
     }
     const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -48,13 +48,13 @@ public:
       const auto left = static_cast<int>(elapsed * (1.0 - share) / share);
       eta = fmt::format("{}:{:02}", left / 60, left % 60);
     }
-    std::string what = p.scan + ": " + p.what;
+    std::string what = p.scan + ": " + p.what();
     if (what.size() > 40) what = what.substr(0, 39) + "…";
     fmt::print(stderr, "\r[{}{}] {}/{} scans{} {:3.0f} %  ETA {}  {:<41}", std::string(filled, '#'),
                std::string(30 - filled, ' '), p.scans_done, p.scans_total,
                p.scans_failed ? fmt::format(" ({} failed)", p.scans_failed) : std::string(), 100.0 * share,
                eta, what);
-    if (failed) fmt::print(stderr, "\npdeface: error: {}\n", p.what.substr(8));
+    if (failed) fmt::print(stderr, "\npdeface: error: {}\n", p.failure);
     if (p.scans_done == p.scans_total) fmt::print(stderr, "\n");
   }
 
@@ -89,40 +89,40 @@ Result<void> write_report(const std::vector<OutputFile>& files) {
 }
 
 int run_compare(CompareArgs args) {
-  Result<std::vector<fs::path>> inputs = compare::expand_inputs(args.in);
+  Result<std::vector<fs::path>> inputs = pipeline::expand_inputs(args.in);
   if (!inputs) return fail(inputs.error());
   if (!args.in.empty() && inputs->empty()) {
     fmt::print(stderr, "pdeface: error: no mesh files in {}\n", args.in.front().string());
     return kDataError;
   }
-  compare::CompareOptions& o = args.options;
+  pipeline::CompareOptions& o = args.options;
   o.scheme = named<pde::Scheme>(pde::kSchemeNames, args.scheme);
   o.pde_lossless = !args.lossy_only;
   o.pde_lossy = !args.lossless_only;
   o.budgets_at_pde = !args.no_pde_budgets;
   o.keep_bytes = args.files;
   ProgressPrinter printer(args.quiet);
-  const compare::Report report =
-      compare::compare_scans({.inputs = *inputs, .options = o, .progress = std::ref(printer)});
-  const std::vector<OutputFile> files = compare::report_files(report, args.out);
+  const pipeline::Report report =
+      pipeline::compare_scans({.inputs = *inputs, .options = o, .progress = std::ref(printer)});
+  const std::vector<OutputFile> files = pipeline::report_files(report, args.out);
   if (Result<void> ok = write_report(files); !ok) return fail(ok.error());
 
-  for (const compare::ScanReport& s : report.scans) {
+  for (const pipeline::ScanReport& s : report.scans) {
     if (!s.failure.empty()) {
       fmt::print("{}: failed: {}\n", s.source, s.failure);
       continue;
     }
-    const auto find = [&](compare::Method m, std::string_view name) -> const compare::Variant* {
-      for (const compare::Variant& v : s.variants)
+    const auto find = [&](pipeline::Method m, std::string_view name) -> const pipeline::Variant* {
+      for (const pipeline::Variant& v : s.variants)
         if (v.method == m && (name.empty() || v.name == name) && v.fidelity) return &v;
       return nullptr;
     };
     fmt::print("{}: {} vertices, PLY {} bytes, {} variants in {:.1f} s\n", s.source, s.vertices, s.ply_bytes,
                s.variants.size(), s.seconds);
-    for (const compare::Variant* v :
-         {find(compare::Method::Draco, fmt::format("draco {} bits", o.heat_draco_bits)),
-          find(compare::Method::DecimateDraco, "decimate+draco 2048 B"),
-          find(compare::Method::Pde, fmt::format("pde {:g} % lossy", 100 * o.heat_ratio))})
+    for (const pipeline::Variant* v :
+         {find(pipeline::Method::Draco, fmt::format("draco {} bits", o.heat_draco_bits)),
+          find(pipeline::Method::DecimateDraco, "decimate+draco 2048 B"),
+          find(pipeline::Method::Pde, fmt::format("pde {:g} % lossy", 100 * o.heat_ratio))})
       if (v)
         fmt::print("  {:<28} {:>8} bytes  coverage {:5.1f} %  mask -> mesh mean {:.3f} mm  mesh -> scan mean "
                    "{:.3f} mm\n",

@@ -30,7 +30,7 @@ int run_convert(ConvertRequest request) {
   // A .pdef holds a face's curves, which only a scan gives: the scan is encoded as `pdeface encode` does.
   if (request.write.format.value_or(formats::format_from_path(request.out).value_or(formats::Format::Ply)) ==
       formats::Format::Pdef) {
-    compare::EncodeRequest encode;
+    pipeline::EncodeRequest encode;
     encode.source = request.in.string();
     return encode_scan(request.in, request.out, encode);
   }

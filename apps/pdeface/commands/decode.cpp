@@ -10,17 +10,16 @@ namespace {
 struct DecodeArgs {
   fs::path in;
   fs::path out;
-  std::vector<std::size_t> resolution; // {v} or {u, v}
+  ResolutionArg resolution;
   formats::WriteOptions write;
   std::size_t max_bytes = 0;
 };
 
 int run_decode(const DecodeArgs& args) {
   formats::ReadOptions read{.format = formats::Format::Pdef};
-  if (args.resolution.size() == 1) read.surface_v = args.resolution[0];
-  if (args.resolution.size() == 2) {
-    read.surface_u = args.resolution[0];
-    read.surface_v = args.resolution[1];
+  if (const std::optional<pipeline::Resolution> grid = args.resolution.grid()) {
+    read.surface_u = grid->u;
+    read.surface_v = grid->v;
   }
   read.pdef_max_bytes = args.max_bytes;
   Notes notes;

@@ -25,19 +25,19 @@ struct EncodeArgs {
 int run_encode(const EncodeArgs& args) {
   Result<align::LandmarkSource> landmarks = landmark_source(args.curves.landmarks);
   if (!landmarks) return fail(landmarks.error());
-  compare::EncodeRequest request{.landmarks = *std::move(landmarks),
-                                 .profiles = args.curves.profile_options(),
-                                 .pde = args.surface.pde_options(),
-                                 .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
-                                 .residual = {.size_bytes = args.size,
-                                              .target_error_mm = args.target_error,
-                                              .target_measure = *value_named<compare::TargetMeasure>(
-                                                  compare::kTargetMeasureNames, args.target_measure),
-                                              .spacing_mm = args.residual_spacing},
-                                 .store_landmarks = args.store_landmarks,
-                                 .name = args.name,
-                                 .source = args.in.string(),
-                                 .force = args.force};
+  pipeline::EncodeRequest request{.landmarks = *std::move(landmarks),
+                                  .profiles = args.curves.profile_options(),
+                                  .pde = args.surface.pde_options(),
+                                  .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
+                                  .residual = {.size_bytes = args.size,
+                                               .target_error_mm = args.target_error,
+                                               .target_measure = *value_named<pipeline::TargetMeasure>(
+                                                   pipeline::kTargetMeasureNames, args.target_measure),
+                                               .spacing_mm = args.residual_spacing},
+                                  .store_landmarks = args.store_landmarks,
+                                  .name = args.name,
+                                  .source = args.in.string(),
+                                  .force = args.force};
   return encode_scan(args.in, args.out, request);
 }
 
@@ -71,7 +71,7 @@ void encode_command(CLI::App& app, int& status) {
           ->check(CLI::Range(0.0001, 10.0));
   size->excludes(target);
   cmd->add_option("--target-measure", args->target_measure, "What --target-error bounds: mean, p95 or max")
-      ->check(CLI::IsMember(all_names<compare::TargetMeasure>(compare::kTargetMeasureNames)))
+      ->check(CLI::IsMember(all_names<pipeline::TargetMeasure>(pipeline::kTargetMeasureNames)))
       ->capture_default_str();
   cmd->add_option("--residual-spacing", args->residual_spacing,
                   "The residual grid's spacing (mm; default by size: 1, 0.7 or 0.5)")

@@ -2,7 +2,7 @@
 
 #include "common.hpp"
 
-#include "pdeface/compare/pipeline.hpp"
+#include "pdeface/pipeline/requests.hpp"
 
 #include <fmt/format.h>
 
@@ -19,11 +19,11 @@ struct ProfilesArgs {
 int run_profiles(const ProfilesArgs& args) {
   Result<ScanAndLandmarks> input = read_scan_and_landmarks(args.in, args.curves.landmarks);
   if (!input) return fail(input.error());
-  Result<compare::ProfilesOutcome> made =
-      compare::profiles_request(input->scan.mesh, {.landmarks = std::move(input->landmarks),
-                                                   .profiles = args.curves.profile_options(),
-                                                   .svg = !args.svg.empty(),
-                                                   .source = args.in.string()});
+  Result<pipeline::ProfilesOutcome> made =
+      pipeline::profiles_request(input->scan.mesh, {.landmarks = std::move(input->landmarks),
+                                                    .profiles = args.curves.profile_options(),
+                                                    .svg = !args.svg.empty(),
+                                                    .source = args.in.string()});
   if (!made) return fail(made.error());
   std::vector<OutputFile> outputs{{args.out, made->json}};
   if (!args.svg.empty()) outputs.push_back({args.svg, made->svg});

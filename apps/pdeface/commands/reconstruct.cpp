@@ -2,7 +2,7 @@
 
 #include "common.hpp"
 
-#include "pdeface/compare/pipeline.hpp"
+#include "pdeface/pipeline/requests.hpp"
 
 #include <fmt/format.h>
 
@@ -18,17 +18,17 @@ struct ReconstructArgs {
   fs::path preview;  // SVG: scan and reconstruction side by side
   CurveArgs curves;
   SurfaceArgs surface;
-  std::vector<std::size_t> resolution; // {v} or {u, v}
+  ResolutionArg resolution;
   formats::WriteOptions write;
   bool force = false;
 };
 
-void print_fidelity(const compare::ReconstructOutcome& made) {
+void print_fidelity(const pipeline::ReconstructOutcome& made) {
   if (!made.fidelity) {
     fmt::print(stderr, "pdeface: note: fidelity not measured: {}\n", made.fidelity_failure);
     return;
   }
-  const compare::Fidelity& f = *made.fidelity;
+  const metrics::Fidelity& f = *made.fidelity;
   const metrics::DistanceStats& d = f.surface.both;
   fmt::print("fidelity (mm, face region): profile error {:.3f} (symmetry {:.3f}, eyes {:.3f}, diagonals "
              "{:.3f} / {:.3f}); surface distance mean {:.3f}, RMS {:.3f}, p95 {:.3f}, max {:.2f}\n",
@@ -37,7 +37,7 @@ void print_fidelity(const compare::ReconstructOutcome& made) {
   fmt::print("  = mean {:.3g}, max {:.3g} {} in the scan's units; max {:.2e} of the face region's diagonal\n",
              d.mean * made.scan_units_per_mm, d.max * made.scan_units_per_mm,
              to_string(made.reconstruction.scan.units), d.max / f.surface.diagonal);
-  const compare::Coverage& c = f.coverage;
+  const metrics::Coverage& c = f.coverage;
   fmt::print("coverage of the face (the outline its landmarks give): {:.1f} % of the scan within 1 mm of the "
              "reconstruction; scan -> reconstruction mean {:.3f}, p95 {:.3f} mm; reconstruction -> scan mean "
              "{:.3f} mm\n",
@@ -47,17 +47,15 @@ void print_fidelity(const compare::ReconstructOutcome& made) {
 int run_reconstruct(const ReconstructArgs& args) {
   Result<ScanAndLandmarks> input = read_scan_and_landmarks(args.in, args.curves.landmarks);
   if (!input) return fail(input.error());
-  compare::ReconstructRequest request{
+  pipeline::ReconstructRequest request{
       .landmarks = std::move(input->landmarks),
       .options = {.profiles = args.curves.profile_options(), .pde = args.surface.pde_options()},
       .profiles_json = !args.profiles.empty(),
       .preview = !args.preview.empty(),
       .source = args.in.string(),
       .force = args.force};
-  if (args.resolution.size() == 1) request.options.resolution = compare::Resolution{0, args.resolution[0]};
-  if (args.resolution.size() == 2)
-    request.options.resolution = compare::Resolution{args.resolution[0], args.resolution[1]};
-  Result<compare::ReconstructOutcome> made = compare::reconstruct_request(input->scan.mesh, request);
+  request.options.resolution = args.resolution.grid();
+  Result<pipeline::ReconstructOutcome> made = pipeline::reconstruct_request(input->scan.mesh, request);
   if (!made) return fail(made.error());
 
   // Everything is encoded before anything is written, and written as a set: a failure (an unknown output
@@ -72,7 +70,7 @@ int run_reconstruct(const ReconstructArgs& args) {
   if (!args.preview.empty()) outputs.push_back({args.preview, made->preview_svg});
   if (Result<void> ok = write_outputs(outputs); !ok) return fail(ok.error());
 
-  const compare::Reconstruction& r = made->reconstruction;
+  const pipeline::Reconstruction& r = made->reconstruction;
   const slice::ProfileSet& p = r.profiles;
   const pde::Surface& s = r.surface;
   fmt::print("{}: {} curves x {} points ({:.1f} % of {}), {} scheme, N = {} modes{}, a = {:.3f}\n",

@@ -2,7 +2,7 @@
 
 #include "common.hpp"
 
-#include "pdeface/compare/pipeline.hpp"
+#include "pdeface/pipeline/requests.hpp"
 
 #include <fmt/format.h>
 
@@ -15,36 +15,36 @@ struct TableArgs {
   std::vector<fs::path> in;
   fs::path out; // Markdown; stdout when empty
   fs::path csv;
-  std::vector<double> ratios{compare::kPaperRatios.begin(), compare::kPaperRatios.end()};
+  std::vector<double> ratios{pipeline::kPaperRatios.begin(), pipeline::kPaperRatios.end()};
   std::vector<std::string> schemes{"spline", "paper", "patch4"};
   CurveArgs curves;
   SurfaceArgs surface;
 };
 
 int run_table(const TableArgs& args) {
-  compare::TableOptions options{.ratios = args.ratios,
-                                .schemes = {},
-                                .profiles = args.curves.profile_options(),
-                                .pde = args.surface.pde_options()};
+  pipeline::TableOptions options{.ratios = args.ratios,
+                                 .schemes = {},
+                                 .profiles = args.curves.profile_options(),
+                                 .pde = args.surface.pde_options()};
   for (const std::string& name : args.schemes)
     options.schemes.push_back(named<pde::Scheme>(pde::kSchemeNames, name));
-  std::vector<compare::TableRow> rows;
+  std::vector<pipeline::TableRow> rows;
   for (const fs::path& in : args.in) {
     Result<formats::LoadedMesh> scan = read_scan(in);
     if (!scan) return fail(scan.error());
-    Result<std::vector<compare::TableRow>> scan_rows =
-        compare::table_request(scan->mesh, options, in.string());
+    Result<std::vector<pipeline::TableRow>> scan_rows =
+        pipeline::table_request(scan->mesh, options, in.string());
     if (!scan_rows) return fail(scan_rows.error());
-    for (const compare::TableRow& r : *scan_rows)
+    for (const pipeline::TableRow& r : *scan_rows)
       if (!r.fidelity)
         fmt::print(stderr, "pdeface: note: {}: {:g} %, {}: {}\n", in.string(), 100 * r.ratio,
                    pde::to_string(r.scheme), r.failure);
     rows.insert(rows.end(), scan_rows->begin(), scan_rows->end());
   }
-  const std::string markdown = compare::table_markdown(rows);
+  const std::string markdown = pipeline::table_markdown(rows);
   std::vector<OutputFile> outputs;
   if (!args.out.empty()) outputs.push_back({args.out, markdown});
-  if (!args.csv.empty()) outputs.push_back({args.csv, compare::table_csv(rows)});
+  if (!args.csv.empty()) outputs.push_back({args.csv, pipeline::table_csv(rows)});
   if (Result<void> ok = write_outputs(outputs); !ok) return fail(ok.error());
   if (args.out.empty())
     fmt::print("{}", markdown);

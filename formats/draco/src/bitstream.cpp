@@ -1,5 +1,6 @@
 #include "bitstream.hpp"
 
+#include "pdeface/core/bytes.hpp"
 #include "pdeface/draco/draco.hpp"
 
 #include <fmt/format.h>
@@ -67,9 +68,10 @@ public:
 private:
   std::optional<Error> little_endian(std::uint32_t& value, int n, std::string_view what) {
     if (remaining() < static_cast<std::size_t>(n)) return truncated(what);
-    value = 0;
-    for (int i = 0; i < n; ++i)
-      value |= std::uint32_t{static_cast<std::uint8_t>(bytes_[pos_++])} << (8 * i);
+    value = n == 1   ? load_le<std::uint8_t>(bytes_, pos_)
+            : n == 2 ? load_le<std::uint16_t>(bytes_, pos_)
+                     : load_le<std::uint32_t>(bytes_, pos_);
+    pos_ += static_cast<std::size_t>(n);
     return std::nullopt;
   }
 

@@ -1,5 +1,7 @@
 #include "container.hpp"
 
+#include "pdeface/core/bytes.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -14,11 +16,9 @@ constexpr std::uint32_t kBinChunk = 0x004E4942;  // "BIN\0"
 constexpr std::uint64_t kHeaderSize = 12;
 constexpr std::uint64_t kChunkHeaderSize = 8;
 
+// \pre offset + 4 <= bytes.size() (checked by the callers against the header's and chunks' sizes)
 std::uint32_t u32_at(std::string_view bytes, std::uint64_t offset) {
-  std::uint32_t v = 0;
-  for (int i = 0; i < 4; ++i)
-    v |= std::uint32_t{static_cast<std::uint8_t>(bytes[offset + i])} << (8 * i);
-  return v;
+  return load_le<std::uint32_t>(bytes, static_cast<std::size_t>(offset));
 }
 
 // A chunk type as text for messages ("JSON", "BIN", or hex when not printable).

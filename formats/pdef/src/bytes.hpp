@@ -1,7 +1,9 @@
 #pragma once
-// Little-endian fields, LEB128 varints and zigzag integers: writing them, and reading them with every read
-// checked against the bytes that remain (the first failure is kept, with its byte offset).
+// Little-endian fields, LEB128 varints and zigzag integers: writing them (core's `ByteWriter`), and
+// reading them with every read checked against the bytes that remain (the first failure is kept, with its
+// byte offset; the bytes themselves are decoded by core's `load_le`).
 
+#include "pdeface/core/bytes.hpp"
 #include "pdeface/core/result.hpp"
 
 #include <bit>
@@ -20,34 +22,10 @@ namespace pdeface::pdef::detail {
   return static_cast<std::int64_t>(u >> 1) ^ -static_cast<std::int64_t>(u & 1);
 }
 
-class Writer {
+//! Core's little-endian writer, with zigzag varints for signed values.
+class Writer : public ByteWriter {
 public:
-  void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
-  void u32(std::uint32_t v) {
-    for (int i = 0; i < 4; ++i)
-      u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void u64(std::uint64_t v) {
-    for (int i = 0; i < 8; ++i)
-      u8(static_cast<std::uint8_t>(v >> (8 * i)));
-  }
-  void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void varint(std::uint64_t v) {
-    while (v >= 0x80) {
-      u8(static_cast<std::uint8_t>(v | 0x80));
-      v >>= 7;
-    }
-    u8(static_cast<std::uint8_t>(v));
-  }
   void svarint(std::int64_t v) { varint(zigzag(v)); }
-  void bytes(std::string_view b) { out_.append(b); }
-
-  [[nodiscard]] std::size_t size() const { return out_.size(); }
-  [[nodiscard]] std::string& str() { return out_; }
-
-private:
-  std::string out_;
 };
 
 //! Reads fields from `bytes`, which start at `base` in the file (for offsets in errors). After the first
@@ -116,9 +94,8 @@ public:
 private:
   template <typename Unsigned> Unsigned little_endian(std::string_view what) {
     if (!need(sizeof(Unsigned), what)) return 0;
-    Unsigned v = 0;
-    for (std::size_t i = 0; i < sizeof(Unsigned); ++i)
-      v |= Unsigned{static_cast<std::uint8_t>(bytes_[pos_++])} << (8 * i);
+    const auto v = load_le<Unsigned>(bytes_, pos_);
+    pos_ += sizeof(Unsigned);
     return v;
   }
   bool need(std::size_t n, std::string_view what) {

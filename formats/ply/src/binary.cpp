@@ -1,5 +1,7 @@
 #include "pdeface/ply/binary.hpp"
 
+#include "pdeface/core/bytes.hpp"
+
 #include <fmt/format.h>
 
 #include <bit>
@@ -13,9 +15,7 @@ namespace {
 // A little-endian 32-bit value at `out`.
 template <class T> void put32(char* out, T value) {
   static_assert(sizeof(T) == 4);
-  auto bits = std::bit_cast<std::uint32_t>(value);
-  if constexpr (std::endian::native == std::endian::big) bits = __builtin_bswap32(bits);
-  std::memcpy(out, &bits, 4);
+  store_le(out, std::bit_cast<std::uint32_t>(value));
 }
 
 constexpr std::size_t kFaceRecord = 1 + 3 * 4;

@@ -8,6 +8,7 @@
 #include "pdeface/ply/ply.hpp"
 
 #include "openmesh_io.hpp"
+#include "pdeface/core/bytes.hpp"
 #include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
@@ -29,18 +30,10 @@ constexpr std::size_t kPreambleBytes = 84; // header + facet count
 constexpr std::size_t kFacetBytes = 50;    // normal, 3 corners (12 floats), 2 attribute bytes
 
 std::uint32_t load_u32(std::string_view bytes, std::size_t offset) {
-  std::array<unsigned char, 4> b{};
-  std::memcpy(b.data(), bytes.data() + offset, 4);
-  return static_cast<std::uint32_t>(b[0]) | static_cast<std::uint32_t>(b[1]) << 8 |
-         static_cast<std::uint32_t>(b[2]) << 16 | static_cast<std::uint32_t>(b[3]) << 24;
+  return load_le<std::uint32_t>(bytes, offset);
 }
 
-float load_float(std::string_view bytes, std::size_t offset) {
-  const std::uint32_t bits = load_u32(bytes, offset);
-  float value;
-  std::memcpy(&value, &bits, sizeof value);
-  return value;
-}
+float load_float(std::string_view bytes, std::size_t offset) { return load_le_f32(bytes.data() + offset); }
 
 // "units mm" anywhere in free text (the binary header, the solid line), as our writer puts it.
 Units units_in(std::string_view text) {

@@ -22,7 +22,6 @@ using detail::mirror_of;
 using detail::mirror_rms;
 using detail::plane_of;
 using detail::refine;
-using detail::Similarity;
 
 // Lengths below are in face millimetres: millimetres of the face at the scale being tried. `unit` (scan
 // units per face millimetre) turns them into the scan's units.
@@ -449,8 +448,6 @@ Landmarks symmetrised(const Landmarks& found, const Plane& plane) {
   return out;
 }
 
-Similarity similarity(const FaceFrame& f) { return {f.rotation, f.translation, f.scale}; }
-
 // A first frame from the nose alone: origin at the tip, z forward, y up, x = y × z (the face's left).
 Similarity nose_frame(const Nose& nose, const Vec3& up, double mm_per_unit) {
   Eigen::Matrix3d r;
@@ -480,9 +477,7 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, std::opt
   Similarity frame;
   std::vector<Similarity> starts;
   if (from) {
-    starts.push_back(*from);
-    starts.back().translation *= mm_per_unit / from->scale;
-    starts.back().scale = mm_per_unit;
+    starts.push_back(from->with_scale(mm_per_unit));
   } else {
     for (const Vec3& up : {c.nose.up, Vec3(-c.nose.up)})
       starts.push_back(nose_frame(c.nose, up, mm_per_unit));
@@ -505,7 +500,7 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, std::opt
     if (!next) break;
     const double turn = Eigen::AngleAxisd(next->rotation * frame.rotation.transpose()).angle();
     if (turn < 0.01 && std::abs(mm / frame.scale - 1.0) < 0.01) break; // settled
-    frame = similarity(*next);
+    frame = Similarity(*next);
     if (round == rounds) break;
     const Landmarks found =
         detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame, cell, s.loops);
@@ -526,9 +521,9 @@ struct Fitted {
 
 // The landmarks searched in `start`, the frame fitted to them (rigidly, at the scale chosen), and again
 // until the frame stops moving (a fixed point does not depend on where the search started).
-std::optional<Fitted> fit_landmarks(const Scene& s, Similarity frame, double mm_per_unit, Units units) {
-  frame.translation *= mm_per_unit / frame.scale;
-  frame.scale = mm_per_unit;
+std::optional<Fitted> fit_landmarks(const Scene& s, const Similarity& start, double mm_per_unit,
+                                    Units units) {
+  Similarity frame = start.with_scale(mm_per_unit);
   std::optional<Fitted> fitted;
   for (int round = 0; round < 10; ++round) {
     Landmarks found =
@@ -539,7 +534,7 @@ std::optional<Fitted> fit_landmarks(const Scene& s, Similarity frame, double mm_
     Fitted now{std::move(found), *fit, shape ? shape->rms_mm : std::numeric_limits<double>::infinity()};
     const double turn = Eigen::AngleAxisd(fit->rotation * frame.rotation.transpose()).angle();
     const double shift = (fit->translation - frame.translation).norm();
-    frame = similarity(*fit);
+    frame = Similarity(*fit);
     const bool settled = round > 0 && turn < 1e-4 && shift < 0.01; // 0.006°, 10 µm
     // Settled: the fixed point. Else (landmarks jumping between two places) the round that fitted best.
     if (settled || !fitted || now.shape_rms < fitted->shape_rms) fitted = std::move(now);
@@ -584,170 +579,261 @@ struct Hypothesis {
   double rank = -1.0;
 };
 
-} // namespace
+// ---- the search, step by step ---------------------------------------------------------------------------
 
-Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const FaceFrame& frame) {
-  if (given.count() == kLandmarkCount || scan.vertex_count() == 0) return given;
-  const PointIndex index(scan.positions);
-  const Landmarks found =
-      detail::search_landmarks(scan.positions, scan.triangles, detail::median_spacing(scan.positions, index),
-                               similarity(frame), 1.0, detail::boundary_loops(scan.triangles), true);
-  Landmarks out = given;
-  for (std::size_t i = 0; i < kLandmarkCount; ++i)
-    if (!out.points[i] && found.points[i]) out.points[i] = *found.points[i];
-  return out;
-}
+// How the search runs. Lengths are face millimetres (`unit` turns them into scan units) unless said.
+// Where candidates come from:
+constexpr std::size_t kGlobalPlanes = 4;         // the scan's own symmetry planes tried, best first
+constexpr int kExtremeDirections = 600;          // directions in which the scan's extreme points are taken
+constexpr std::size_t kMostExtremePlaces = 1000; // extreme places (points far out along a direction) kept
+constexpr double kMinFallMm = 5.0;               // a pointed place: the surface falls this far around it
+                                                 // (a nose tip falls 15-30 mm)
+constexpr std::size_t kMostLocalPlanes = 10;     // local symmetry planes kept, the most pointed places first
+constexpr double kProfileSlabMm = 1.0;           // a point cloud's symmetry profile: points this near the
+constexpr double kProfileSlabSpacings = 0.6;     // plane, or this many point spacings when that is more
+constexpr std::size_t kNosesPerPlane = 3;        // nose candidates taken from each global plane's profile
+constexpr double kLocalReachMm = 40.0;           // a local plane's profile: within this of its pointed place
+// When two candidates are one:
+constexpr double kSameSeedMm = 3.0;         // seeds with nose tips this close, on planes whose normals
+constexpr double kSamePlaneCos = 0.995;     // are within ~5.7° (cosine), are one seed
+constexpr double kTriedNoseMm = 5.0;        // a seed this close to the nose of a hypothesis already tried
+constexpr double kTriedScaleFactor = 1.3;   // at a scale within this factor (either way) is skipped
+constexpr double kSameHypothesisMm = 5.0;   // hypotheses with nose tips this close and scales within
+constexpr double kSameHypothesisLog = 0.15; // this in log (~16 %) are verified thoroughly once
+// How hard each candidate is tried:
+constexpr std::size_t kQuickPoints = 400;    // a seed's plane registered quickly: points of the central face
+constexpr int kQuickIterations = 10;         // and mirror-ICP steps (thoroughly: every voxel, 30 steps)
+constexpr int kVerifyRounds = 3;             // refits of the frame and scale to the landmarks it implies
+constexpr double kQuickCellMm = 2.0;         // depth-map cell for the quick verification of every seed
+constexpr double kFinalCellMm = 1.0;         // and for the thorough one and the final landmarks
+constexpr std::size_t kThoroughPerRound = 3; // hypotheses verified thoroughly and finished per round
+constexpr std::size_t kLastRounds = 3;       // rounds over the remaining hypotheses when no stage found one
+// The final frame:
+constexpr double kRegisterAgainShare = 0.02; // the plane registered again when the landmarks' scale differs
+                                             // from the verified one by more than 2 %
+constexpr int kScalePasses = 3;              // landmark fits at the scale they give, until it moves less
+constexpr double kSettledScaleShare = 1e-3;  // than 0.1 %
+// Stated units: the face at that scale, then as a child's (mm per unit × 1.4: a face 0.7 times as large)
+// or a large adult's (÷ 1.2).
+constexpr double kChildScale = 1.4;
+constexpr double kLargeAdultScale = 1.2;
 
-Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
-  const std::string source = scan.name;
-  if (scan.vertex_count() < 100)
+// The candidate symmetry plane through a pointed place of the scan.
+struct Local {
+  Extreme place;
+  Plane plane;
+};
+
+// Detection as a search over hypotheses (a symmetry plane, a nose on it, a scale), cheapest first:
+//   1. the scan's own symmetry planes at the scale the file states or its size suggests;
+//   2. the local planes around its pointed places (a face turned on its shoulders, a bust);
+//   3. every candidate scale (a bust, a head, units of no rule);
+// each stage stopping once a face is found. Every seed is tried quickly (`try_scale`: the landmarks it
+// implies on a coarse depth map, the scale they imply); the most face-like few are verified thoroughly and
+// finished (`conclude`, `finish`) into landmarks, a frame and the cues that judge them.
+class FaceSearch {
+public:
+  FaceSearch(const Mesh& scan, const Scene& scene, const DetectOptions& options)
+      : scan_(scan), scene_(scene), options_(options), fixed_scale_(scan.units != Units::Unknown),
+        stated_(fixed_scale_ ? std::optional<double>(millimetres_per(scan.units)) : std::nullopt),
+        scales_(stated_ ? std::vector<double>{*stated_, *stated_ * kChildScale, *stated_ / kLargeAdultScale}
+                        : candidate_scales(scene)),
+        mid_(scales_[scales_.size() / 2]), planes_(global_planes(scene, options.directions, kGlobalPlanes)) {
+    // The first scale: the file's, else the one its size suggests (`detect_units`: right for a face scan
+    // in mm, cm or m); for units of no rule (a scan too large in any), the middle candidate.
+    first_ = fixed_scale_ ? scales_.front() : millimetres_per(detect_units(scene.mesh));
+    if (scene.size * first_ > kMaxScanMm) first_ = mid_;
+  }
+
+  Result<Detection> run() {
+    // Stage by stage, stopping at the first face that passes every cue: a pedestal's corner can pass the
+    // quick test (symmetric, a "nose", landmarks near the average face's) but has no eye sockets, and
+    // must not end the search before the bust's face above it is tried.
+    try_scale(first_, true, false);
+    if (found_a_face())
+      if (std::optional<Detection> d = conclude()) return std::move(*d);
+    find_local_planes();
+    try_scale(first_, false, true);
+    if (found_a_face())
+      if (std::optional<Detection> d = conclude()) return std::move(*d);
+    for (const double mm : scales_)
+      try_scale(mm, true, true);
+    // Last, every remaining hypothesis, the most face-like first, a few at a time.
+    for (std::size_t round = 0; round < kLastRounds; ++round)
+      if (std::optional<Detection> d = conclude()) return std::move(*d);
+    if (first_failure_) return *std::move(first_failure_);
     return make_error(ErrorCode::NoFace,
-                      fmt::format("no face found: {} points are too few to hold one", scan.vertex_count()),
-                      source);
-  if (const double size = bounding_box(scan).diagonal(); size > kMaxScanSize)
-    return make_error(
-        ErrorCode::NoFace,
-        fmt::format("no face found: the scan spans {:.3g} units, which no face scan does in any "
-                    "unit",
-                    size),
-        source);
-  const Scene scene = prepare(scan, options);
-  if (!(scene.size >= kMinScanSize) || scene.spacing <= 0.0)
-    return make_error(ErrorCode::NoFace, "no face found: the points do not span a surface", source);
-  const bool fixed_scale = scan.units != Units::Unknown;
-  if (fixed_scale && scene.size * millimetres_per(scan.units) > kMaxScanMm)
-    return make_error(
-        ErrorCode::NoFace,
-        fmt::format("no face found: the scan spans {:.3g} m, more than any face scan ({:.0f} m)",
-                    scene.size * millimetres_per(scan.units) / 1000.0, kMaxScanMm / 1000.0),
-        source);
-  const std::optional<double> stated =
-      fixed_scale ? std::optional<double>(millimetres_per(scan.units)) : std::nullopt;
-  // Stated units: the face at that scale first, then as a child's (0.7 times as large) or a large adult's.
-  const std::vector<double> scales =
-      stated ? std::vector<double>{*stated, *stated * 1.4, *stated / 1.2} : candidate_scales(scene);
+                      fmt::format("no face found: no nose-like point on any symmetry plane (most prominent "
+                                  "{:.1f} mm, a nose stands at least {:.0f} mm out of its profile)",
+                                  best_prominence_, kMinNoseProminence),
+                      scan_.name);
+  }
 
-  // Hypotheses: on the scan's own symmetry planes, every nose-like point; around the most pointed
-  // extreme points, the local symmetry plane and the nose on it; each at every candidate scale. Every
-  // one is tried quickly (the landmarks it implies on a coarse depth map, the scale they imply), the
-  // most face-like few thoroughly.
-  const double mid = scales[scales.size() / 2];
-  const std::vector<Plane> planes = global_planes(scene, options.directions, 4);
-  struct Local {
-    Extreme place;
-    Plane plane;
-  };
-  std::vector<Local> locals;
-  const auto find_locals = [&] {
+private:
+  // Step 2's planes: around the most pointed extreme places of the scan (at the middle scale), the local
+  // symmetry plane.
+  void find_local_planes() {
     std::vector<std::pair<double, Extreme>> pointed;
-    for (const Extreme& e : extreme_places(extreme_points(scene, 600), 1.0 / mid, 1000))
-      if (const double fall = fall_around(scene, e.point, e.direction, 1.0 / mid); fall >= 5.0)
+    for (const Extreme& e :
+         extreme_places(extreme_points(scene_, kExtremeDirections), 1.0 / mid_, kMostExtremePlaces))
+      if (const double fall = fall_around(scene_, e.point, e.direction, 1.0 / mid_); fall >= kMinFallMm)
         pointed.emplace_back(fall, e);
     std::ranges::sort(pointed, std::greater{}, &std::pair<double, Extreme>::first);
     for (const auto& [fall, e] : pointed) {
-      if (locals.size() == 10) break;
-      if (const std::optional<Plane> plane = local_plane(scene, e.point, e.direction, 1.0 / mid))
-        locals.push_back({e, *plane});
+      if (locals_.size() == kMostLocalPlanes) break;
+      if (const std::optional<Plane> plane = local_plane(scene_, e.point, e.direction, 1.0 / mid_))
+        locals_.push_back({e, *plane});
     }
-  };
+  }
 
-  double best_prominence = 0.0;
-  std::vector<Hypothesis> quick;
-  const auto try_scale = [&](double mm, bool on_planes, bool on_locals) {
+  // The seeds at scale `mm`: every nose-like point on the global planes' profiles and the best one on
+  // each local plane's, one per place and plane.
+  std::vector<Candidate> seeds_at(double mm, bool on_planes, bool on_locals) {
     const double unit = 1.0 / mm;
-    const double slab = std::max(1.0 * unit, 0.6 * scene.spacing);
+    const double slab = std::max(kProfileSlabMm * unit, kProfileSlabSpacings * scene_.spacing);
     std::vector<Candidate> seeds;
     const auto add = [&](const Plane& plane, const Nose& nose) {
-      best_prominence = std::max(best_prominence, nose.prominence);
+      best_prominence_ = std::max(best_prominence_, nose.prominence);
       if (nose.prominence < kMinNoseProminence) return;
       if (std::ranges::any_of(seeds, [&](const Candidate& o) {
-            return (o.nose.tip - nose.tip).norm() < 3.0 * unit &&
-                   std::abs(o.plane.normal.dot(plane.normal)) > 0.995;
+            return (o.nose.tip - nose.tip).norm() < kSameSeedMm * unit &&
+                   std::abs(o.plane.normal.dot(plane.normal)) > kSamePlaneCos;
           }))
         return;
       seeds.push_back({plane, nose, 0.0});
     };
-    for (const Plane& plane : on_planes ? std::span<const Plane>(planes) : std::span<const Plane>())
-      for (const Nose& nose : find_noses(plane, profile_of(scene, plane, slab, unit), unit, 3))
+    for (const Plane& plane : on_planes ? std::span<const Plane>(planes_) : std::span<const Plane>())
+      for (const Nose& nose : find_noses(plane, profile_of(scene_, plane, slab, unit), unit, kNosesPerPlane))
         add(plane, nose);
-    for (const Local& l : on_locals ? std::span<const Local>(locals) : std::span<const Local>()) {
+    for (const Local& l : on_locals ? std::span<const Local>(locals_) : std::span<const Local>()) {
       const auto noses =
-          find_noses(l.plane, profile_of(scene, l.plane, slab, unit, &l.place.point, 40.0 * unit), unit, 1,
-                     &l.place.direction);
+          find_noses(l.plane, profile_of(scene_, l.plane, slab, unit, &l.place.point, kLocalReachMm * unit),
+                     unit, 1, &l.place.direction);
       if (!noses.empty()) add(l.plane, noses.front());
     }
-    for (const Candidate& seed : seeds) {
+    return seeds;
+  }
+
+  // Every seed at scale `mm` tried quickly: its plane registered roughly on the central face, the nose
+  // found on it again, and the landmarks it implies verified on a coarse depth map.
+  void try_scale(double mm, bool on_planes, bool on_locals) {
+    const double unit = 1.0 / mm;
+    for (const Candidate& seed : seeds_at(mm, on_planes, on_locals)) {
       // A seed where an earlier scale's try ended up near this scale is tried already.
-      if (std::ranges::any_of(quick, [&](const Hypothesis& h) {
-            return (h.candidate.nose.tip - seed.nose.tip).norm() < 5.0 * unit &&
-                   std::abs(std::log(h.verified.mm_per_unit / mm)) < std::log(1.3);
+      if (std::ranges::any_of(quick_, [&](const Hypothesis& h) {
+            return (h.candidate.nose.tip - seed.nose.tip).norm() < kTriedNoseMm * unit &&
+                   std::abs(std::log(h.verified.mm_per_unit / mm)) < std::log(kTriedScaleFactor);
           }))
         continue;
-      // The plane registered roughly on the central face, and the nose on it again.
-      const std::optional<Candidate> c = around_the_nose(scene, seed.plane, seed.nose, unit, 400, 10);
+      const std::optional<Candidate> c =
+          around_the_nose(scene_, seed.plane, seed.nose, unit, kQuickPoints, kQuickIterations);
       if (!c) continue;
-      Hypothesis h{*c, verify(scene, *c, mm, stated, 3, 2.0)};
+      Hypothesis h{*c, verify(scene_, *c, mm, stated_, kVerifyRounds, kQuickCellMm)};
       h.rank = rank(*c, h.verified);
-      quick.push_back(std::move(h));
+      quick_.push_back(std::move(h));
     }
-  };
-  // Cheapest first, and no further than needed: the scan's own symmetry planes at the scale the file
-  // states or the bounding box suggests (`detect_units`: right for a face scan in mm, cm or m); then the
-  // local planes around its pointed places (a face turned on its shoulders, a bust); then every candidate
-  // scale (a bust, a head, units of no rule). Each stops when a face is found: symmetric, its landmarks
-  // on the average face, and (when the scale was a guess) saying the same unit.
-  double first = fixed_scale ? scales.front() : millimetres_per(detect_units(scene.mesh));
-  if (scene.size * first > kMaxScanMm) first = mid; // units of no rule: the scale its size suggests
-  const auto found_a_face = [&] {
-    return std::ranges::any_of(quick, [&](const Hypothesis& h) {
+  }
+
+  // A face among the quick tries: symmetric, its landmarks on the average face, and (when the scale was a
+  // guess) saying the same unit as the first scale.
+  [[nodiscard]] bool found_a_face() const {
+    return std::ranges::any_of(quick_, [&](const Hypothesis& h) {
       return h.verified.shape_rms < kFaceShapeMm && h.candidate.rms_mm < kFaceSymmetryMm &&
-             (fixed_scale || snap_units(h.verified.mm_per_unit) == snap_units(first));
+             (fixed_scale_ || snap_units(h.verified.mm_per_unit) == snap_units(first_));
     });
-  };
-  // One verified hypothesis refined into landmarks and a frame, and judged on every cue.
-  const auto finish = [&](const Hypothesis& best) -> Result<Detection> {
-    // The scale: stated by the file, else the one the landmarks give, snapped to a standard unit when
-    // close to one. The landmarks are searched in face millimetres whatever the units (the windows fit the
-    // face, be it larger than life or a child's): at the scale the landmarks give, again until it stays.
-    double face_mm = best.verified.mm_per_unit;
-    if (const std::optional<Shape> shape = shape_of(best.verified.found)) face_mm = shape->mm_per_unit;
-    Candidate chosen = best.candidate;
-    if (std::abs(face_mm / best.verified.mm_per_unit - 1.0) > 0.02)
-      if (const std::optional<Candidate> again =
-              around_the_nose(scene, chosen.plane, chosen.nose, 1.0 / face_mm))
-        chosen = *again;
-    std::optional<Fitted> fitted;
-    // From the frame the refined symmetry plane and nose give (it fixes the roll and yaw better than
-    // landmarks searched on a coarse map), the way up verification found.
-    const Vec3 up = best.verified.frame.rotation.row(1).dot(chosen.nose.up) >= 0.0 ? chosen.nose.up
-                                                                                   : Vec3(-chosen.nose.up);
-    Similarity start = nose_frame(chosen.nose, up, face_mm);
-    for (int pass = 0; pass < 3; ++pass) {
-      fitted = fit_landmarks(scene, start, face_mm, Units::Unknown);
-      if (!fitted) break;
-      const std::optional<Shape> shape = shape_of(fitted->found);
-      // Until the scale moves less than 0.1 %: a fixed point, whatever the pose the search started from.
-      if (!shape || std::abs(shape->mm_per_unit / face_mm - 1.0) < 1e-3) break;
-      start = similarity(fitted->frame);
-      face_mm = shape->mm_per_unit;
+  }
+
+  // The most face-like few hypotheses so far (distinct nose tips or scales), verified thoroughly and
+  // finished; the first that is confidently a face is the answer. Those tried are not tried again; the
+  // first failure is kept to report.
+  std::optional<Detection> conclude() {
+    const auto same = [](const Hypothesis& h, const Hypothesis& q) {
+      const double mm = q.verified.mm_per_unit;
+      return (h.candidate.nose.tip - q.candidate.nose.tip).norm() < kSameHypothesisMm / mm &&
+             std::abs(std::log(h.verified.mm_per_unit / mm)) < kSameHypothesisLog;
+    };
+    std::ranges::sort(quick_, std::greater{}, &Hypothesis::rank);
+    std::vector<Hypothesis> hypotheses;
+    for (const Hypothesis& q : quick_) {
+      if (hypotheses.size() == kThoroughPerRound) break;
+      if (std::ranges::any_of(hypotheses, [&](const Hypothesis& h) { return same(h, q); }) ||
+          std::ranges::any_of(tried_, [&](const Hypothesis& h) { return same(h, q); }))
+        continue;
+      tried_.push_back(q);
+      const double mm = q.verified.mm_per_unit;
+      const std::optional<Candidate> c =
+          around_the_nose(scene_, q.candidate.plane, q.candidate.nose, 1.0 / mm);
+      if (!c) continue;
+      Hypothesis h{*c, verify(scene_, *c, mm, stated_, kVerifyRounds, kFinalCellMm, &q.verified.frame)};
+      h.rank = rank(*c, h.verified);
+      hypotheses.push_back(std::move(h));
     }
-    if (!fitted)
+    std::ranges::sort(hypotheses, std::greater{}, &Hypothesis::rank);
+    for (const Hypothesis& h : hypotheses) {
+      Result<Detection> found = finish(h);
+      if (found) return std::move(*found);
+      if (!first_failure_) first_failure_ = std::move(found).error();
+    }
+    return std::nullopt;
+  }
+
+  // What `final_fit` makes of a verified hypothesis.
+  struct FinalFit {
+    Candidate chosen;             // the plane and nose, registered again at the final scale if it moved
+    double face_mm = 0.0;         // the face's scale (mm per unit)
+    std::optional<Fitted> fitted; // the landmarks and the frame fitted to them; none: too few corners
+  };
+
+  // The scale: the one the landmarks give (stated units aside, see `finish`), again until it stays. The
+  // landmarks are searched in face millimetres whatever the units (the windows fit the face, be it larger
+  // than life or a child's), from the frame the refined symmetry plane and nose give (it fixes the roll
+  // and yaw better than landmarks searched on a coarse map), the way up verification found.
+  FinalFit final_fit(const Hypothesis& best) const {
+    FinalFit out{best.candidate, best.verified.mm_per_unit, std::nullopt};
+    if (const std::optional<Shape> shape = shape_of(best.verified.found)) out.face_mm = shape->mm_per_unit;
+    if (std::abs(out.face_mm / best.verified.mm_per_unit - 1.0) > kRegisterAgainShare)
+      if (const std::optional<Candidate> again =
+              around_the_nose(scene_, out.chosen.plane, out.chosen.nose, 1.0 / out.face_mm))
+        out.chosen = *again;
+    const Nose& nose = out.chosen.nose;
+    const Vec3 up = best.verified.frame.rotation.row(1).dot(nose.up) >= 0.0 ? nose.up : Vec3(-nose.up);
+    Similarity start = nose_frame(nose, up, out.face_mm);
+    for (int pass = 0; pass < kScalePasses; ++pass) {
+      out.fitted = fit_landmarks(scene_, start, out.face_mm, Units::Unknown);
+      if (!out.fitted) break;
+      const std::optional<Shape> shape = shape_of(out.fitted->found);
+      // Until the scale settles: a fixed point, whatever the pose the search started from.
+      if (!shape || std::abs(shape->mm_per_unit / out.face_mm - 1.0) < kSettledScaleShare) break;
+      start = out.fitted->frame;
+      out.face_mm = shape->mm_per_unit;
+    }
+    return out;
+  }
+
+  // One verified hypothesis refined into landmarks and a frame (`final_fit`), measured again around the
+  // nose tip found, and judged on every cue.
+  Result<Detection> finish(const Hypothesis& best) const {
+    const FinalFit fit = final_fit(best);
+    const Candidate& chosen = fit.chosen;
+    const double face_mm = fit.face_mm;
+    if (!fit.fitted)
       return make_error(
           ErrorCode::NoFace,
           fmt::format("no face found: the nose-like point at ({:.4g}, {:.4g}, {:.4g}) has too few "
                       "eye or mouth corners around it to fix a face frame",
                       chosen.nose.tip.x(), chosen.nose.tip.y(), chosen.nose.tip.z()),
-          source);
+          scan_.name);
+    const Fitted& fitted = *fit.fitted;
 
     // The frame at the scan's scale: its units' when it states them or the face's scale is close to a
     // standard unit's, else the face's.
-    const Units units = fixed_scale ? scan.units : snap_units(face_mm);
+    const Units units = fixed_scale_ ? scan_.units : snap_units(face_mm);
     const double mm = units == Units::Unknown ? face_mm : millimetres_per(units);
-    Result<FaceFrame> frame = frame_from_landmarks(fitted->found, mm, units);
-    if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, source);
+    Result<FaceFrame> frame = frame_from_landmarks(fitted.found, mm, units);
+    if (!frame) return make_error(ErrorCode::NoFace, "no face found: " + frame.error().message, scan_.name);
 
     Detection out;
-    out.landmarks = fitted->found;
+    out.landmarks = fitted.found;
     out.landmarks.units = units;
     out.frame = *frame;
     out.symmetry = chosen.plane;
@@ -756,90 +842,95 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
     out.symmetry_rms_mm = chosen.rms_mm * rescale;
     out.nose_prominence_mm = chosen.nose.prominence * rescale;
     Nose final_nose = chosen.nose;
-    final_nose.tip = *fitted->found[Landmark::NoseTip];
+    final_nose.tip = *fitted.found[Landmark::NoseTip];
     final_nose.forward = out.frame.axis_in_scan(2); // looking at the face from the front
     if (const std::optional<Candidate> around =
-            around_the_nose(scene, chosen.plane, final_nose, 1.0 / face_mm)) {
+            around_the_nose(scene_, chosen.plane, final_nose, 1.0 / face_mm)) {
       out.symmetry = around->plane;
       out.symmetry_rms_mm = around->rms_mm;
       out.nose_prominence_mm = around->nose.prominence;
     }
-    out.fit_rms_mm = fitted->shape_rms;
-    {
-      Similarity seen = similarity(out.frame);
-      seen.translation *= face_mm / seen.scale;
-      seen.scale = face_mm;
-      out.eye_hollow_mm = detail::eye_hollowness(scene.mesh.positions, scene.mesh.triangles, scene.spacing,
-                                                 seen, out.landmarks)
-                              .value_or(0.0);
-    }
+    out.fit_rms_mm = fitted.shape_rms;
+    out.eye_hollow_mm = detail::eye_hollowness(scene_.mesh.positions, scene_.mesh.triangles, scene_.spacing,
+                                               out.frame.with_scale(face_mm), out.landmarks)
+                            .value_or(0.0);
     const Cues c = cues(out);
     out.confidence = c.confidence();
-    if (out.confidence < options.min_confidence)
+    if (out.confidence < options_.min_confidence)
       return make_error(
           ErrorCode::NoFace,
           fmt::format("no face found: confidence {:.2f} < {:.2f} (symmetry {:.1f} mm, nose {:.1f} mm, "
                       "landmark fit {:.1f} mm, {} of {} landmarks, eye hollows {:.1f} mm)",
-                      out.confidence, options.min_confidence, out.symmetry_rms_mm, out.nose_prominence_mm,
+                      out.confidence, options_.min_confidence, out.symmetry_rms_mm, out.nose_prominence_mm,
                       out.fit_rms_mm, out.landmarks.count(), kLandmarkCount, out.eye_hollow_mm),
-          source);
+          scan_.name);
     return out;
-  };
-  // The most face-like few hypotheses so far (distinct nose tips or scales), verified thoroughly and
-  // finished; the first that is confidently a face is the answer. Those tried are not tried again.
-  std::vector<Hypothesis> tried;
-  std::optional<Error> first_failure;
-  const auto same = [](const Hypothesis& h, const Hypothesis& q) {
-    const double mm = q.verified.mm_per_unit;
-    return (h.candidate.nose.tip - q.candidate.nose.tip).norm() < 5.0 / mm &&
-           std::abs(std::log(h.verified.mm_per_unit / mm)) < 0.15;
-  };
-  const auto conclude = [&]() -> std::optional<Detection> {
-    std::ranges::sort(quick, std::greater{}, &Hypothesis::rank);
-    std::vector<Hypothesis> hypotheses;
-    for (const Hypothesis& q : quick) {
-      if (hypotheses.size() == 3) break;
-      if (std::ranges::any_of(hypotheses, [&](const Hypothesis& h) { return same(h, q); }) ||
-          std::ranges::any_of(tried, [&](const Hypothesis& h) { return same(h, q); }))
-        continue;
-      tried.push_back(q);
-      const double mm = q.verified.mm_per_unit;
-      const std::optional<Candidate> c =
-          around_the_nose(scene, q.candidate.plane, q.candidate.nose, 1.0 / mm);
-      if (!c) continue;
-      Hypothesis h{*c, verify(scene, *c, mm, stated, 3, 1.0, &q.verified.frame)};
-      h.rank = rank(*c, h.verified);
-      hypotheses.push_back(std::move(h));
-    }
-    std::ranges::sort(hypotheses, std::greater{}, &Hypothesis::rank);
-    for (const Hypothesis& h : hypotheses) {
-      Result<Detection> found = finish(h);
-      if (found) return std::move(*found);
-      if (!first_failure) first_failure = std::move(found).error();
-    }
-    return std::nullopt;
-  };
-  // Stage by stage, stopping at the first face that passes every cue: a pedestal's corner can pass the
-  // quick test (symmetric, a "nose", landmarks near the average face's) but has no eye sockets, and must
-  // not end the search before the bust's face above it is tried.
-  try_scale(first, true, false);
-  if (found_a_face())
-    if (std::optional<Detection> d = conclude()) return std::move(*d);
-  find_locals();
-  try_scale(first, false, true);
-  if (found_a_face())
-    if (std::optional<Detection> d = conclude()) return std::move(*d);
-  for (const double mm : scales)
-    try_scale(mm, true, true);
-  // Last, every remaining hypothesis, the most face-like first, three at a time.
-  for (std::size_t round = 0; round < 3; ++round)
-    if (std::optional<Detection> d = conclude()) return std::move(*d);
-  if (first_failure) return *std::move(first_failure);
-  return make_error(ErrorCode::NoFace,
-                    fmt::format("no face found: no nose-like point on any symmetry plane (most prominent "
-                                "{:.1f} mm, a nose stands at least {:.0f} mm out of its profile)",
-                                best_prominence, kMinNoseProminence),
-                    source);
+  }
+
+  const Mesh& scan_;
+  const Scene& scene_;
+  const DetectOptions& options_;
+  bool fixed_scale_;                   // the file states its units
+  std::optional<double> stated_;       // their mm per unit
+  std::vector<double> scales_;         // the scales (mm per unit) step 3 tries
+  double mid_;                         // the middle one: pointed places are judged at it
+  std::vector<Plane> planes_;          // the scan's own symmetry planes
+  double first_ = 1.0;                 // the scale steps 1 and 2 try
+  std::vector<Local> locals_;          // step 2's planes
+  double best_prominence_ = 0.0;       // the most prominent nose-like point seen (for the error)
+  std::vector<Hypothesis> quick_;      // every seed tried quickly
+  std::vector<Hypothesis> tried_;      // those verified thoroughly
+  std::optional<Error> first_failure_; // why the first finished hypothesis was not a face
+};
+
+// Why a scan can hold no face before any search: too few points, a size no face scan has in any unit, or
+// no surface at all.
+std::optional<Error> unsearchable(const Mesh& scan) {
+  if (scan.vertex_count() < 100)
+    return make_error(ErrorCode::NoFace,
+                      fmt::format("no face found: {} points are too few to hold one", scan.vertex_count()),
+                      scan.name);
+  if (const double size = bounding_box(scan).diagonal(); size > kMaxScanSize)
+    return make_error(
+        ErrorCode::NoFace,
+        fmt::format("no face found: the scan spans {:.3g} units, which no face scan does in any "
+                    "unit",
+                    size),
+        scan.name);
+  return std::nullopt;
+}
+
+std::optional<Error> unsearchable(const Mesh& scan, const Scene& scene) {
+  if (!(scene.size >= kMinScanSize) || scene.spacing <= 0.0)
+    return make_error(ErrorCode::NoFace, "no face found: the points do not span a surface", scan.name);
+  if (scan.units != Units::Unknown && scene.size * millimetres_per(scan.units) > kMaxScanMm)
+    return make_error(
+        ErrorCode::NoFace,
+        fmt::format("no face found: the scan spans {:.3g} m, more than any face scan ({:.0f} m)",
+                    scene.size * millimetres_per(scan.units) / 1000.0, kMaxScanMm / 1000.0),
+        scan.name);
+  return std::nullopt;
+}
+
+} // namespace
+
+Landmarks complete_landmarks(const Mesh& scan, const Landmarks& given, const FaceFrame& frame) {
+  if (given.count() == kLandmarkCount || scan.vertex_count() == 0) return given;
+  const PointIndex index(scan.positions);
+  const Landmarks found =
+      detail::search_landmarks(scan.positions, scan.triangles, detail::median_spacing(scan.positions, index),
+                               Similarity(frame), 1.0, detail::boundary_loops(scan.triangles), true);
+  Landmarks out = given;
+  for (std::size_t i = 0; i < kLandmarkCount; ++i)
+    if (!out.points[i] && found.points[i]) out.points[i] = *found.points[i];
+  return out;
+}
+
+Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& options) {
+  if (std::optional<Error> e = unsearchable(scan)) return *std::move(e);
+  const Scene scene = prepare(scan, options);
+  if (std::optional<Error> e = unsearchable(scan, scene)) return *std::move(e);
+  return FaceSearch(scan, scene, options).run();
 }
 
 Result<Alignment> align_scan(const Mesh& scan, std::optional<Landmarks> given, std::string_view source,

@@ -23,11 +23,7 @@ Result<AlignOutcome> align_request(const Mesh& scan, const AlignRequest& request
   if (request.crop) {
     Result<Mesh> cropped =
         crop_face(out.canonical, to_canonical(alignment->landmarks, alignment->frame), request.crop_options);
-    if (!cropped) {
-      Error e = std::move(cropped).error();
-      if (e.source.empty()) e.source = request.source;
-      return e;
-    }
+    if (!cropped) return with_source(std::move(cropped).error(), request.source);
     out.canonical = std::move(cropped).value();
   }
   if (request.landmarks_json)

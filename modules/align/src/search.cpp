@@ -254,7 +254,7 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
                            Landmarks* as_found) {
   std::vector<Vec3> local(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    local[i] = frame.to_face(points[i]);
+    local[i] = frame.apply(points[i]);
   spacing *= frame.scale;
   DepthMap map(-100.0, 100.0, -140.0, 120.0, cell);
   map.rasterise(local, triangles, std::max(1.5 * cell, 1.5 * spacing));
@@ -273,7 +273,7 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
 
   Landmarks found;
   auto place = [&](Landmark l, double x, double y) {
-    if (const auto z = map.at(x, y)) found[l] = frame.to_scan(Vec3(x, y, *z));
+    if (const auto z = map.at(x, y)) found[l] = frame.apply_inverse(Vec3(x, y, *z));
   };
   if (!tip) return found;
   place(Landmark::NoseTip, tip->x(), tip->y());
@@ -368,7 +368,7 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
                      Landmark::EyeInnerRight, Landmark::MouthLeft, Landmark::MouthRight}) {
     const std::optional<Vec3>& other = found[mirrored(l)];
     if (found.has(l) || !other) continue;
-    const Vec3 seen = frame.to_face(*other);
+    const Vec3 seen = frame.apply(*other);
     place(l, 2.0 * x0 - seen.x(), seen.y());
   }
   auto mean = [](const std::vector<double>& v, double fallback) {
@@ -411,24 +411,24 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
     y_bottom = cut ? std::min(end, chin_by_proportion) : end;
   }
   const double z_bottom = map.at(x0, y_bottom).value_or(chin ? chin->y() : tip->z() - 28.0);
-  found[Landmark::FaceBottom] = frame.to_scan(Vec3(x0, y_bottom, z_bottom));
+  found[Landmark::FaceBottom] = frame.apply_inverse(Vec3(x0, y_bottom, z_bottom));
   // Rule of thirds: hairline to nasion ~ half of nasion to chin; the nasion is a few mm above the eyes.
   // Up the midline to there, or to where the scan ends first (holes crossed).
   const double y_nasion = y_eyes + 4.0;
   const double y_top = y_nasion + 0.5 * (y_nasion - y_bottom);
   const double y_scan = std::min(y_top, follow(y_nasion, 1.0, [](double) { return true; }).first);
   const double z_top = map.at(x0, y_scan).value_or(tip->z() - 30.0);
-  found[Landmark::FaceTop] = frame.to_scan(Vec3(x0, std::max(y_scan, y_nasion), z_top));
+  found[Landmark::FaceTop] = frame.apply_inverse(Vec3(x0, std::max(y_scan, y_nasion), z_top));
 
   if (as_found) *as_found = found;
   if (!repair) return found;
   std::array<std::optional<Vec3>, 7> stable;
   for (std::size_t i = 0; i < stable.size(); ++i)
-    if (found.has(kStableLandmarks[i])) stable[i] = frame.to_face(*found[kStableLandmarks[i]]);
+    if (found.has(kStableLandmarks[i])) stable[i] = frame.apply(*found[kStableLandmarks[i]]);
   const std::array<std::optional<Vec3>, 7> fixed =
       repaired(stable, [&](double x, double y) { return map.at(x, y); });
   for (std::size_t i = 0; i < stable.size(); ++i)
-    if (fixed[i] && fixed[i] != stable[i]) found[kStableLandmarks[i]] = frame.to_scan(*fixed[i]);
+    if (fixed[i] && fixed[i] != stable[i]) found[kStableLandmarks[i]] = frame.apply_inverse(*fixed[i]);
   return found;
 }
 
@@ -437,7 +437,7 @@ std::optional<double> eye_hollowness(std::span<const Vec3> points, std::span<con
   if (!landmarks.has(Landmark::EyeInnerLeft) || !landmarks.has(Landmark::EyeInnerRight)) return std::nullopt;
   std::vector<Vec3> local(points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
-    local[i] = frame.to_face(points[i]);
+    local[i] = frame.apply(points[i]);
   spacing *= frame.scale;
   DepthMap map(-100.0, 100.0, -140.0, 120.0, 1.0);
   map.rasterise(local, triangles, std::max(1.5, 1.5 * spacing));
@@ -447,7 +447,7 @@ std::optional<double> eye_hollowness(std::span<const Vec3> points, std::span<con
   const DepthMap soft = map.smoothed(std::max(1.5, spacing));
   std::optional<double> least;
   for (Landmark l : {Landmark::EyeInnerLeft, Landmark::EyeInnerRight}) {
-    const Vec3 q = frame.to_face(*landmarks[l]);
+    const Vec3 q = frame.apply(*landmarks[l]);
     const std::optional<double> rel = soft.relief(q.x(), q.y(), 12.0);
     if (!rel) return std::nullopt;
     least = std::min(least.value_or(-*rel), -*rel);

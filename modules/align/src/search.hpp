@@ -3,6 +3,7 @@
 
 #include "pdeface/align/landmarks.hpp"
 #include "pdeface/core/depth_map.hpp"
+#include "pdeface/core/similarity.hpp"
 
 #include <Eigen/Core>
 
@@ -11,18 +12,6 @@
 #include <vector>
 
 namespace pdeface::align::detail {
-
-// A similarity into a face frame (mm): q = scale · rotation · p + translation.
-struct Similarity {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
-  Vec3 translation = Vec3::Zero();
-  double scale = 1.0; // face mm per scan unit
-
-  [[nodiscard]] Vec3 to_face(const Vec3& p) const { return scale * (rotation * p) + translation; }
-  [[nodiscard]] Vec3 to_scan(const Vec3& q) const {
-    return rotation.transpose() * ((q - translation) / scale);
-  }
-};
 
 // The boundaries of a mesh (its holes and outer border) as vertex sets: the connected pieces of the
 // edges that only one triangle has.

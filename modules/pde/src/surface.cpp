@@ -16,10 +16,6 @@ namespace pdeface::pde {
 
 std::string_view to_string(Scheme scheme) noexcept { return name_of<Scheme>(kSchemeNames, scheme); }
 
-std::optional<Scheme> scheme_from_string(std::string_view name) noexcept {
-  return value_named<Scheme>(kSchemeNames, name);
-}
-
 std::string_view to_string(Spacing spacing) noexcept { return name_of<Spacing>(kSpacingNames, spacing); }
 
 namespace {

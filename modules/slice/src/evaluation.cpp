@@ -57,16 +57,4 @@ Result<std::vector<EvaluationProfile>> evaluation_from(const std::array<Evaluati
 
 } // namespace detail
 
-Result<std::vector<EvaluationProfile>> evaluation_profiles(const Mesh& canonical, const CurveRegion& region,
-                                                           double eye_height, const SectionOptions& section) {
-  const auto specs = detail::evaluation_specs(eye_height);
-  std::vector<Plane> planes;
-  std::vector<ProfileAxes> axes;
-  for (const detail::EvaluationSpec& spec : specs) {
-    planes.push_back(spec.plane);
-    axes.push_back(spec.axes);
-  }
-  return detail::evaluation_from(specs, sections(canonical, planes, axes, section), region);
-}
-
 } // namespace pdeface::slice

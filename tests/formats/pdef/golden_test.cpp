@@ -6,10 +6,10 @@
 //   (sample_10.json:
 //                                 what it held when it was made)
 
-#include "pdeface/compare/encode.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
+#include "pdeface/pipeline/encode.hpp"
 
 #include "pdef_support.hpp"
 
@@ -36,8 +36,8 @@ Face landmarked(Face face) {
   return face;
 }
 
-compare::EncodeRequest sample_request(bool lossless) {
-  compare::EncodeRequest r;
+pipeline::EncodeRequest sample_request(bool lossless) {
+  pipeline::EncodeRequest r;
   r.encoding.lossless = lossless;
   r.source = "sample face";
   return r;
@@ -52,8 +52,8 @@ TEST(PdefGolden, DISABLED_Regenerate) {
   write("synthetic.pdef", encode(landmarked(synthetic_face())).value().bytes);
   write("synthetic_lossless.pdef", encode(landmarked(synthetic_face()), {.lossless = true}).value().bytes);
   const Mesh sample = sample_face();
-  const compare::EncodeOutcome lossy = compare::encode_request(sample, sample_request(false)).value();
-  const compare::EncodeOutcome lossless = compare::encode_request(sample, sample_request(true)).value();
+  const pipeline::EncodeOutcome lossy = pipeline::encode_request(sample, sample_request(false)).value();
+  const pipeline::EncodeOutcome lossless = pipeline::encode_request(sample, sample_request(true)).value();
   write("sample_10.pdef", lossy.encoded.bytes);
   write("sample_10_lossless.pdef", lossless.encoded.bytes);
   nlohmann::json j;

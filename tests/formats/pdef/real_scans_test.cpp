@@ -3,13 +3,13 @@
 // measured in mm with exact point-to-triangle distances, both ways), and the lossless file against the
 // reconstruction's own mesh.
 
-#include "pdeface/compare/encode.hpp"
-#include "pdeface/compare/reconstruct.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/draco/draco.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/metrics/surface_distance.hpp"
 #include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 
 #include "pdeface_test.hpp"
 
@@ -34,18 +34,18 @@ struct Encoded2 {
   Face face;
   Encoded lossy;
   Encoded lossless;
-  compare::CanonicalScan canonical;
+  pipeline::CanonicalScan canonical;
 };
 
 Encoded2 encode_scan(const Mesh& scan, std::string_view name) {
   const Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, name);
   EXPECT_TRUE(alignment) << alignment.error().to_string();
-  compare::CanonicalScan canonical = compare::canonical_scan(scan, *alignment);
-  const compare::ReconstructOptions defaults;
-  const Result<slice::ProfileSet> profiles = compare::extract_profiles(canonical, defaults.profiles);
+  pipeline::CanonicalScan canonical = pipeline::canonical_scan(scan, *alignment);
+  const pipeline::ReconstructOptions defaults;
+  const Result<slice::ProfileSet> profiles = pipeline::extract_profiles(canonical, defaults.profiles);
   EXPECT_TRUE(profiles) << profiles.error().to_string();
-  const pde::Surface surface = compare::surface_from(*profiles, defaults.pde).value();
-  Face face = compare::to_face(*profiles, surface, defaults.pde);
+  const pde::Surface surface = pipeline::surface_from(*profiles, defaults.pde).value();
+  Face face = pipeline::to_face(*profiles, surface, defaults.pde);
   Result<Encoded> lossy = encode(face), lossless = encode(face, {.lossless = true});
   EXPECT_TRUE(lossy && lossless);
   return {std::move(face), *std::move(lossy), *std::move(lossless), std::move(canonical)};
@@ -92,7 +92,7 @@ INSTANTIATE_TEST_SUITE_P(SharedFaces, PdefRealScans, ::testing::ValuesIn(mesh_sc
 // The lossless file decodes to the reconstruction's mesh exactly: one code path from curves to mesh.
 void expect_reconstruction(const Mesh& scan, std::string_view name) {
   const Encoded2 e = encode_scan(scan, name);
-  const Result<compare::Reconstruction> r = compare::reconstruct(e.canonical, {}, name);
+  const Result<pipeline::Reconstruction> r = pipeline::reconstruct(e.canonical, {}, name);
   ASSERT_TRUE(r) << r.error().to_string();
   const Face back = decode(e.lossless.bytes).value();
   const Result<Mesh> decoded = to_mesh(back);
@@ -148,13 +148,13 @@ TEST(PdefSizes, DISABLED_Table) {
     draco14.push_back(
         static_cast<double>(draco::write(scan, {.position_bits = 14, .level = 7}).value().size()));
     const align::Alignment alignment = align::align_scan(scan, std::nullopt, name).value();
-    const compare::CanonicalScan canonical = compare::canonical_scan(scan, alignment);
+    const pipeline::CanonicalScan canonical = pipeline::canonical_scan(scan, alignment);
     for (std::size_t r = 0; r < ratios.size(); ++r) {
-      compare::ReconstructOptions options;
+      pipeline::ReconstructOptions options;
       options.profiles.ratio = ratios[r];
-      const slice::ProfileSet profiles = compare::extract_profiles(canonical, options.profiles).value();
-      const pde::Surface surface = compare::surface_from(profiles, options.pde).value();
-      const Face face = compare::to_face(profiles, surface, options.pde);
+      const slice::ProfileSet profiles = pipeline::extract_profiles(canonical, options.profiles).value();
+      const pde::Surface surface = pipeline::surface_from(profiles, options.pde).value();
+      const Face face = pipeline::to_face(profiles, surface, options.pde);
       for (std::size_t e = 0; e < errors.size(); ++e) {
         const Result<Encoded> encoded =
             encode(face, {.lossless = errors[e] == 0.0, .max_error_mm = errors[e] == 0.0 ? 1.0 : errors[e]});

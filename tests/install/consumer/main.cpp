@@ -1,15 +1,15 @@
 // The method end to end through the installed package: the built-in sample face, detected, reconstructed,
 // measured, written as GLB bytes.
 
-#include "pdeface/compare/pipeline.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/pipeline/requests.hpp"
 
 #include <cstdio>
 
 int main() {
   const pdeface::Mesh scan = pdeface::sample_face();
-  auto made = pdeface::compare::reconstruct_request(scan, {.source = "sample"});
+  auto made = pdeface::pipeline::reconstruct_request(scan, {.source = "sample"});
   if (!made) {
     std::fprintf(stderr, "%s\n", made.error().to_string().c_str());
     return 1;

@@ -75,7 +75,7 @@ struct WriteOptions {
   std::optional<Format> format; //!< override the extension
   bool ascii = false;           //!< PLY and STL: ASCII instead of binary
   bool draco_in_gltf = false;   //!< GLB: compress with KHR_draco_mesh_compression
-  int draco_bits = 14;          //!< Draco and Draco-in-glTF: position quantisation bits (1..30)
+  int draco_bits = 14;          //!< Draco and Draco-in-glTF: position quantisation bits (1..24)
   int draco_level = 7;          //!< Draco compression level (0..10; 0 keeps vertex order)
 };
 

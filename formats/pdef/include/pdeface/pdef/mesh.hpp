@@ -1,6 +1,6 @@
 #pragma once
 //! \file
-//! From curves to a mesh in the scan's frame: the one path both `compare::reconstruct` and a decoded
+//! From curves to a mesh in the scan's frame: the one path both `pipeline::reconstruct` and a decoded
 //! `.pdef` take (solve the PDE surface, evaluate it on a grid, triangulate with normals, map back), so that
 //! a lossless file gives the reconstruction's mesh exactly.
 

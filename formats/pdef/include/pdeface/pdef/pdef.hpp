@@ -10,6 +10,7 @@
 
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
+#include "pdeface/core/similarity.hpp"
 #include "pdeface/pde/surface.hpp"
 #include "pdeface/pdef/residual.hpp"
 
@@ -25,18 +26,9 @@
 
 namespace pdeface::pdef {
 
-//! The similarity from the scan's frame to the canonical face frame: p_canonical = scale · R · p_scan + t
-//! (as `align::FaceFrame` has it).
-struct Frame {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); //!< proper rotation (det +1)
-  Vec3 translation = Vec3::Zero();                        //!< mm
-  double scale = 1.0;                                     //!< millimetres per scan unit
-  Units scan_units = Units::Unknown;                      //!< the units of the scan's frame
-
-  [[nodiscard]] Vec3 to_scan(const Vec3& q) const {
-    return rotation.transpose() * ((q - translation) / scale);
-  }
-};
+//! The similarity from the scan's frame to the canonical face frame, p_canonical = scale · R · p_scan + t,
+//! and the scan's units: core's `FaceFrame`, the type alignment finds (`align::FaceFrame`).
+using Frame = FaceFrame;
 
 //! A named point of the face (canonical frame, mm), e.g. "nose_tip".
 struct Landmark {

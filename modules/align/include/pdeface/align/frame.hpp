@@ -1,15 +1,13 @@
 #pragma once
 //! \file
-//! The canonical face frame and the similarity that takes a scan into it.
-//!
-//! Canonical frame: origin at the nose tip, +x across the face from its right to its left (the normal
-//! of the symmetry plane), +y up (chin to forehead), +z out of the face towards the viewer, millimetres.
-//! The transform is kept as data so that results computed in the canonical frame (profiles, a PDE
-//! surface) can be mapped back into the scan's own frame and units.
+//! The canonical face frame and the similarity that takes a scan into it: found from landmarks, applied to
+//! meshes and landmarks. The frame itself (`FaceFrame`, a `Similarity` and the scan's units) is core's
+//! (`pdeface/core/similarity.hpp`), shared with the `.pdef` codec and the pipeline.
 
 #include "pdeface/align/landmarks.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
+#include "pdeface/core/similarity.hpp"
 
 #include <Eigen/Geometry>
 
@@ -18,21 +16,9 @@
 
 namespace pdeface::align {
 
-//! p_canonical = scale · rotation · p_scan + translation.
-struct FaceFrame {
-  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity(); //!< proper rotation (det +1)
-  Vec3 translation = Vec3::Zero();                        //!< in mm
-  double scale = 1.0;                                     //!< millimetres per scan unit
-  Units scan_units = Units::Unknown;                      //!< the units the scan was found to be in
-
-  [[nodiscard]] Vec3 to_canonical(const Vec3& p) const { return scale * (rotation * p) + translation; }
-  [[nodiscard]] Vec3 to_scan(const Vec3& q) const {
-    return rotation.transpose() * ((q - translation) / scale);
-  }
-  //! The canonical frame's axes and origin expressed in the scan's frame.
-  [[nodiscard]] Vec3 axis_in_scan(int axis) const { return rotation.row(axis).transpose(); }
-  [[nodiscard]] Vec3 origin_in_scan() const { return to_scan(Vec3::Zero()); }
-};
+//! p_canonical = scale · rotation · p_scan + translation, and the units the scan was found to be in
+//! (`pdeface::FaceFrame`).
+using FaceFrame = pdeface::FaceFrame;
 
 //! Units of a face scan: those it states, else a first guess from its size (a bounding-box diagonal
 //! under 2 means metres, under 60 centimetres, else millimetres). Only a guess: a bust or a scan in

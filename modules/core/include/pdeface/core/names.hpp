@@ -1,7 +1,7 @@
 #pragma once
 //! \file
-//! The names of an enum's values, one table per enum: what is printed, what is parsed (a value may have
-//! aliases; the first name of a value is its own), and an unknown name is an error listing the valid ones.
+//! The names of an enum's values, one table per enum: what is printed and what is parsed (a value may have
+//! aliases; the first name of a value is its own).
 
 #include "pdeface/core/result.hpp"
 
@@ -41,17 +41,6 @@ template <class E> [[nodiscard]] std::vector<std::string> all_names(std::span<co
   for (const NamedValue<E>& n : table)
     out.emplace_back(n.name);
   return out;
-}
-
-//! `value_named`, or `InvalidArgument`: "unknown <what> 'name' (one of a, b, c)".
-template <class E>
-[[nodiscard]] Result<E> parse_named(std::span<const NamedValue<E>> table, std::string_view name,
-                                    std::string_view what) {
-  if (const std::optional<E> v = value_named(table, name)) return *v;
-  std::string message = "unknown " + std::string(what) + " '" + std::string(name) + "' (one of ";
-  for (std::size_t i = 0; i < table.size(); ++i)
-    message += (i == 0 ? "" : ", ") + std::string(table[i].name);
-  return make_error(ErrorCode::InvalidArgument, message + ")");
 }
 
 } // namespace pdeface

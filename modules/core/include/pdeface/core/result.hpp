@@ -69,6 +69,13 @@ struct Error {
   return Error{code, std::move(message), std::move(source), where};
 }
 
+//! `error` naming `source`, unless it names a source already: what a stage returns when it passes on the
+//! error of a step that did not know the input's name.
+[[nodiscard]] inline Error with_source(Error error, std::string_view source) {
+  if (error.source.empty()) error.source = source;
+  return error;
+}
+
 //! Non-fatal notes a reader or writer collects for the user ("colours dropped: STL cannot store them").
 using Notes = std::vector<std::string>;
 

@@ -1,7 +1,7 @@
 #pragma once
 //! \file
 //! A solved surface as a triangle mesh with normals on a regular grid: the one path from a `Surface` to
-//! vertices (`Surface::mesh`, `pdef::to_mesh` and `compare::reconstruct` all take it), fast enough that
+//! vertices (`Surface::mesh`, `pdef::to_mesh` and `pipeline::reconstruct` all take it), fast enough that
 //! writing the mesh out costs more than making it.
 
 #include "pdeface/core/mesh.hpp"

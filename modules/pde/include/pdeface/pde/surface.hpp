@@ -54,8 +54,6 @@ enum class Scheme {
 inline constexpr std::array<NamedValue<Scheme>, 3> kSchemeNames{
     {{"spline", Scheme::Spline}, {"paper", Scheme::Paper}, {"patch4", Scheme::Patch4}}};
 [[nodiscard]] std::string_view to_string(Scheme scheme) noexcept;
-//! "spline", "paper" or "patch4"; nullopt for anything else.
-[[nodiscard]] std::optional<Scheme> scheme_from_string(std::string_view name) noexcept;
 
 //! Where the curves sit in u.
 enum class Spacing {

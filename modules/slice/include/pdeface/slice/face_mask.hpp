@@ -3,7 +3,7 @@
 //! The face as the landmarks outline it: an ellipse in the canonical frame's x–y plane, from the chin to
 //! the forehead and across the cheeks just beyond the outer eye corners, with a depth limit so that the
 //! back of a head does not count. It does not depend on any reconstruction, so it is the yardstick of
-//! how much of a face a reconstruction covers (`compare::measure_coverage`), and, grown, the most the
+//! how much of a face a reconstruction covers (`metrics::measure_coverage`), and, grown, the most the
 //! profile curves may span (`ProfileOptions::region`).
 
 #include "pdeface/align/landmarks.hpp"

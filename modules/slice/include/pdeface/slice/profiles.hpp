@@ -186,16 +186,6 @@ struct ProfileSet {
 inline constexpr double kMinRatio = 0.05;
 inline constexpr double kMaxRatio = 0.60;
 
-//! The four evaluation profiles within `region`: the symmetry profile (x = 0, ascending y), the
-//! cross-section through the eyes (y = `eye_height`, ascending x) and the two diagonals through the nose
-//! tip (planes holding the z axis and (1, ±1, 0)/√2), each over the stretch of its line inside the region,
-//! trimmed to where the scan has surface; holes are recorded as gaps. Errors: `NoFace` naming the profile
-//! when the scan cannot supply it.
-[[nodiscard]] Result<std::vector<EvaluationProfile>> evaluation_profiles(const Mesh& canonical,
-                                                                         const CurveRegion& region,
-                                                                         double eye_height,
-                                                                         const SectionOptions& section = {});
-
 //! The whole stage on a scan in the canonical frame (`align::to_canonical`) with its landmarks in that
 //! frame; `frame` is recorded in the result. Each curve spans its own extent: from a seed at the nose
 //! tip's height down and up along its plane's front-most section while there is surface (holes up to

@@ -1,0 +1,69 @@
+#include "pdeface/pipeline/encode.hpp"
+#include "encode_residual.hpp"
+
+#include "pdeface/core/text.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
+
+namespace pdeface::pipeline {
+
+pdef::Face to_face(const slice::ProfileSet& profiles, const pde::Surface& surface,
+                   const pde::Options& options) {
+  pdef::Face face;
+  face.curves = to_curves(profiles);
+  for (const slice::ProfileCurve& c : profiles.curves) {
+    face.planes.push_back(c.x);
+    face.filled.push_back(c.filled);
+  }
+  face.frame = profiles.frame;
+  face.pde = options;
+  face.pde.smoothing = surface.smoothing();
+  face.pde.modes = surface.modes();
+  return face;
+}
+
+Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& request) {
+  Result<align::Alignment> alignment = align::align_from(scan, request.landmarks, request.source);
+  if (!alignment) return alignment.error();
+  return encode_aligned(scan, *std::move(alignment), request);
+}
+
+Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignment,
+                                     const EncodeRequest& request) {
+  const CanonicalScan canonical = canonical_scan(scan, alignment);
+  Result<slice::ProfileSet> profiles = extract_profiles(canonical, request.profiles);
+  auto named = [&](Error e) { return with_source(std::move(e), request.source); };
+  if (!profiles) return named(std::move(profiles).error());
+  Result<pde::Surface> surface = surface_from(*profiles, request.pde, request.source);
+  if (!surface) return named(std::move(surface).error());
+  EncodeOutcome out{std::move(alignment), *std::move(profiles), {}, {}};
+  out.face = to_face(out.profiles, *surface, request.pde);
+  out.face.name = clean_name(request.name); // a .pdef name is printable UTF-8, at most 1024 bytes
+  if (request.store_landmarks)
+    for (std::size_t i = 0; i < align::kLandmarkCount; ++i)
+      if (const std::optional<Vec3>& p = canonical.landmarks.points[i])
+        out.face.landmarks.push_back({std::string(align::name(static_cast<align::Landmark>(i))), *p});
+  Result<pdef::Encoded> encoded = pdef::encode(out.face, request.encoding);
+  if (!encoded) return named(std::move(encoded).error());
+  out.encoded = *std::move(encoded);
+  if (request.residual.wanted()) {
+    Result<ResidualOutcome> layer = add_residual(canonical, out, request.residual, request.source);
+    if (!layer) return named(std::move(layer).error());
+    out.residual = *std::move(layer);
+  }
+  if (!request.check) return out;
+  // What a reader gets: the file's bytes decoded and meshed, back in the canonical frame.
+  Result<pdef::Face> decoded = pdef::decode(out.encoded.bytes, request.source);
+  if (!decoded) return named(std::move(decoded).error());
+  Result<Mesh> mesh = pdef::to_mesh(*decoded, std::nullopt, request.source);
+  if (!mesh) return named(std::move(mesh).error());
+  Result<metrics::SelfCheck> check = metrics::checked(
+      canonical.mesh, out.profiles, align::to_canonical(*mesh, out.alignment.frame),
+      out.residual ? with_scans_folds(*request.check, canonical.mesh, out.profiles.mask) : *request.check,
+      request.force, request.source);
+  if (!check) return check.error();
+  out.check = *std::move(check);
+  return out;
+}
+
+} // namespace pdeface::pipeline

@@ -1,0 +1,444 @@
+// compare_scan and compare_scans: every variant of every scan, measured on its decoded bytes.
+
+#include "pdeface/pipeline/report.hpp"
+#include "encode_residual.hpp"
+
+#include "pdeface/align/crop.hpp"
+#include "pdeface/align/frame.hpp"
+#include "pdeface/core/sample_face.hpp"
+#include "pdeface/formats/formats.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
+
+#include "heat_map.hpp"
+#include "parallel.hpp"
+#include "report_detail.hpp"
+#include "variants.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <mutex>
+
+namespace pdeface::pipeline {
+
+std::string_view to_string(Method method) noexcept {
+  switch (method) {
+  case Method::Raw: return "raw";
+  case Method::Gzip: return "raw+gzip";
+  case Method::Draco: return "draco";
+  case Method::DecimateDraco: return "decimate+draco";
+  case Method::Pde: return "pde";
+  }
+  return "?";
+}
+
+std::size_t Report::failed() const {
+  return static_cast<std::size_t>(
+      std::ranges::count_if(scans, [](const ScanReport& s) { return !s.failure.empty(); }));
+}
+
+namespace {
+
+using detail::Encoded;
+
+constexpr std::array<formats::Format, 4> kRawFormats{formats::Format::Obj, formats::Format::Ply,
+                                                     formats::Format::Vrml, formats::Format::Glb};
+
+std::string extension(formats::Format format) {
+  return std::string(formats::info(format).extensions.front());
+}
+
+// One variant to make: what it is, and how its bytes are made and decoded.
+struct Task {
+  Variant variant;
+  std::function<Result<Encoded>()> make;
+  bool keep_mesh = false; // its decoded mesh is wanted for a heat map
+  std::optional<Mesh> decoded;
+};
+
+// The variant's row from its encoding: sizes, times and the decoded mesh's counts.
+void fill(Variant& v, const Encoded& e, bool keep_bytes) {
+  v.bytes = e.bytes.size();
+  v.encode_ms = e.encode_ms;
+  v.decode_ms = e.decode_ms;
+  v.vertices = e.decoded.vertex_count();
+  v.triangles = e.decoded.triangle_count();
+  if (e.bits > 0) v.bits = e.bits;
+  if (keep_bytes) v.encoded = e.bytes;
+}
+
+bool same_geometry(const Mesh& a, const Mesh& b) {
+  return a.positions == b.positions && a.triangles == b.triangles;
+}
+
+// Step 1: the scan aligned, in the canonical frame, and its yardstick: the face mask and the evaluation
+// profiles of the scan at the default slicing, against which every variant is measured.
+struct Prepared {
+  align::Alignment alignment;
+  CanonicalScan canonical;
+  metrics::FaceYardstick yardstick;
+};
+
+Result<Prepared> prepare(const Mesh& scan, std::string_view name, const CompareOptions& options) {
+  const auto named = [&](Error e) { return with_source(std::move(e), name); };
+  Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, name);
+  if (!alignment) return named(std::move(alignment).error());
+  CanonicalScan canonical = canonical_scan(scan, *alignment);
+  Result<slice::ProfileSet> profiles = extract_profiles(canonical);
+  if (!profiles) return named(std::move(profiles).error());
+  Result<metrics::FaceYardstick> made =
+      metrics::FaceYardstick::make(canonical.mesh, *profiles, options.fidelity);
+  if (!made) return named(std::move(made).error());
+  return Prepared{*std::move(alignment), std::move(canonical), *std::move(made)};
+}
+
+// Step 2: what every variant compresses: the geometry only, positions and triangles (a `.pdef` holds no
+// colours either); with `crop_face`, of the face alone, back in the scan's frame (`report` says so).
+Result<Mesh> variant_geometry(const Mesh& scan, const CanonicalScan& canonical, const CompareOptions& options,
+                              ScanReport& report) {
+  Mesh geometry;
+  if (options.crop_face) {
+    Result<Mesh> face = align::crop_face(canonical.mesh, canonical.landmarks);
+    if (!face) return with_source(std::move(face).error(), report.name);
+    Mesh back = align::to_scan(*face, canonical.frame);
+    geometry.positions = std::move(back.positions);
+    geometry.triangles = std::move(back.triangles);
+    report.vertices = geometry.vertex_count();
+    report.triangles = geometry.triangle_count();
+    report.face_only = true;
+  } else {
+    geometry.positions = scan.positions;
+    geometry.triangles = scan.triangles;
+  }
+  geometry.units = scan.units;
+  geometry.name = scan.name;
+  return geometry;
+}
+
+// Steps 3 and 5: tasks made in parallel and each decoded variant measured on the yardstick.
+class Measurer {
+public:
+  Measurer(const Prepared& prepared, const CompareOptions& options,
+           const std::function<void(std::string_view)>& tick)
+      : prepared_(prepared), options_(options), tick_(tick) {}
+
+  [[nodiscard]] Mesh in_canonical(const Mesh& decoded) const {
+    return align::to_canonical(decoded, prepared_.canonical.frame);
+  }
+  [[nodiscard]] const metrics::FaceYardstick& yardstick() const { return prepared_.yardstick; }
+
+  void run(std::vector<Task>& tasks) const {
+    detail::parallel_for(tasks.size(), options_.threads, [&](std::size_t i) {
+      measure(tasks[i], tasks[i].make());
+      tick_(tasks[i].variant.name);
+    });
+  }
+
+private:
+  void measure(Task& task, const Result<Encoded>& e) const {
+    if (!e) {
+      task.variant.failure = e.error().message;
+      return;
+    }
+    fill(task.variant, *e, options_.keep_bytes);
+    const Mesh mesh = in_canonical(e->decoded);
+    if (task.variant.method != Method::Raw && task.variant.method != Method::Gzip) {
+      Result<metrics::MeshFidelity> f = yardstick().measure(mesh);
+      if (!f) {
+        task.variant.failure = f.error().message;
+      } else if (const metrics::SelfCheck check = metrics::self_check(
+                     *f, metrics::facing_away(mesh, yardstick().mask()),
+                     task.variant.budget > 0 && task.variant.method == Method::Pde
+                         ? with_scans_folds(options_.check, prepared_.canonical.mesh, yardstick().mask())
+                         : options_.check);
+                 task.variant.method == Method::Pde && !check.passed()) {
+        // What `pdeface encode` would refuse to write is a failed row, never a silent number.
+        task.variant.failure = "self-check failed: " + check.summary();
+        task.keep_mesh = false;
+      } else {
+        task.variant.fidelity = *f;
+      }
+    }
+    if (task.keep_mesh || task.variant.method == Method::Raw || task.variant.method == Method::Gzip)
+      task.decoded = e->decoded;
+  }
+
+  const Prepared& prepared_;
+  const CompareOptions& options_;
+  const std::function<void(std::string_view)>& tick_;
+};
+
+// Step 3's tasks: raw files (and gzipped), Draco at each quantisation, and the PDE at each ratio. The
+// tasks refer to `geometry`, `scan`, `alignment` and `options`, which must outlive them.
+std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const align::Alignment& alignment,
+                                 std::string_view name, const CompareOptions& options) {
+  std::vector<Task> tasks;
+  for (bool gzipped : {false, true})
+    for (formats::Format f : kRawFormats) {
+      const std::string ext = extension(f) + (gzipped ? ".gz" : "");
+      tasks.push_back(
+          {.variant = {.method = gzipped ? Method::Gzip : Method::Raw,
+                       .name = ext.substr(1),
+                       .extension = ext,
+                       .lossless = true},
+           .make = [&, f, gzipped] { return detail::encode_raw(geometry, f, gzipped, options.gzip_level); }});
+    }
+  for (int bits : options.draco_bits)
+    tasks.push_back({.variant = {.method = Method::Draco,
+                                 .name = fmt::format("draco {} bits", bits),
+                                 .extension = ".drc",
+                                 .bits = bits,
+                                 .lossless = false},
+                     .make = [&, bits] { return detail::encode_draco(geometry, bits, options.draco_level); },
+                     .keep_mesh = bits == options.heat_draco_bits});
+  for (double ratio : options.ratios)
+    for (bool lossless : {false, true}) {
+      if ((lossless && !options.pde_lossless) || (!lossless && !options.pde_lossy)) continue;
+      tasks.push_back(
+          {.variant = {.method = Method::Pde,
+                       .name = fmt::format("pde {:g} % {}", 100.0 * ratio, lossless ? "lossless" : "lossy"),
+                       .extension = ".pdef",
+                       .ratio = ratio,
+                       .lossless = lossless},
+           .make =
+               [&, ratio, lossless, name] {
+                 return detail::encode_pde(scan, alignment, ratio, lossless, options.scheme, name);
+               },
+           .keep_mesh = !lossless && std::abs(ratio - options.heat_ratio) < 1e-9});
+    }
+  for (const std::size_t budget : options.pde_budgets)
+    tasks.push_back({.variant = {.method = Method::Pde,
+                                 .name = fmt::format("pde {:g} % + residual {} B",
+                                                     100.0 * options.pde_budget_ratio, budget),
+                                 .extension = ".pdef",
+                                 .budget = budget,
+                                 .ratio = options.pde_budget_ratio,
+                                 .lossless = false},
+                     .make = [&, budget, name] {
+                       return detail::encode_pde(scan, alignment, options.pde_budget_ratio, false,
+                                                 options.scheme, name, budget);
+                     }});
+  return tasks;
+}
+
+// Step 4: the raw files decode to the same float32 geometry: measured once, on the first decoded, and each
+// other row shares it only when its decoded geometry is the same.
+void share_raw_fidelity(std::vector<Task>& tasks, const Measurer& measurer) {
+  std::optional<metrics::MeshFidelity> raw_fidelity;
+  const Mesh* raw_mesh = nullptr;
+  for (Task& t : tasks) {
+    if (!t.decoded || (t.variant.method != Method::Raw && t.variant.method != Method::Gzip)) continue;
+    if (!raw_mesh || !same_geometry(*raw_mesh, *t.decoded)) {
+      Result<metrics::MeshFidelity> f = measurer.yardstick().measure(measurer.in_canonical(*t.decoded));
+      if (!f) {
+        t.variant.failure = f.error().message;
+        continue;
+      }
+      raw_mesh = &*t.decoded;
+      raw_fidelity = *f;
+    }
+    t.variant.fidelity = raw_fidelity;
+  }
+}
+
+// Step 5's tasks: decimate + Draco at each budget, and at each `.pdef` variant's size (the one at the size
+// of the PDE variant shown as a heat map keeps its mesh). They refer to `geometry`, `options` and
+// `measurer`, which must outlive them.
+std::vector<Task> decimation_tasks(const std::vector<Task>& tasks, const Mesh& geometry,
+                                   const CompareOptions& options, const Measurer& measurer) {
+  std::vector<std::pair<std::size_t, std::string>> budgets;
+  for (std::size_t budget : options.budgets)
+    budgets.emplace_back(budget, fmt::format("decimate+draco {} B", budget));
+  std::string heat_label;
+  if (options.budgets_at_pde)
+    for (const Task& t : tasks)
+      if (t.variant.method == Method::Pde && t.variant.bytes > 0 && t.variant.budget == 0) {
+        budgets.emplace_back(t.variant.bytes, "decimate+draco = " + t.variant.name);
+        if (t.keep_mesh) heat_label = budgets.back().second;
+      }
+  std::vector<Task> decimated;
+  for (const auto& entry : budgets) {
+    const std::size_t budget = entry.first;
+    const std::string& label = entry.second;
+    decimated.push_back({.variant = {.method = Method::DecimateDraco,
+                                     .name = label,
+                                     .extension = ".drc",
+                                     .budget = budget,
+                                     .lossless = false},
+                         .make = [&, budget]() -> Result<Encoded> {
+                           Result<detail::Decimated> d = detail::decimate_to_budget(
+                               geometry, budget, options, [&](const Mesh& decoded) {
+                                 return measurer.yardstick().quick_mask_mean(measurer.in_canonical(decoded));
+                               });
+                           if (!d) return std::move(d).error();
+                           return std::move(d->encoded);
+                         },
+                         .keep_mesh = label == heat_label});
+  }
+  return decimated;
+}
+
+// Step 6: the rows in a reading order (raw, gzip, Draco, decimate + Draco, PDE), their sizes against the
+// raw PLY's, and the heat maps of the variants that kept their meshes.
+void add_rows(ScanReport& report, std::vector<Task>& tasks, std::vector<Task>& decimated,
+              const Measurer& measurer, const CompareOptions& options) {
+  std::vector<Task*> order;
+  for (Method m : {Method::Raw, Method::Gzip, Method::Draco})
+    for (Task& t : tasks)
+      if (t.variant.method == m) order.push_back(&t);
+  for (Task& t : decimated)
+    order.push_back(&t);
+  for (Task& t : tasks)
+    if (t.variant.method == Method::Pde) order.push_back(&t);
+  for (const Task* t : order)
+    if (t->variant.method == Method::Raw && t->variant.extension == ".ply")
+      report.ply_bytes = t->variant.bytes;
+  for (Task* t : order) {
+    if (report.ply_bytes > 0)
+      t->variant.ratio_to_ply = static_cast<double>(t->variant.bytes) / static_cast<double>(report.ply_bytes);
+    if (t->keep_mesh && t->decoded && t->variant.fidelity)
+      report.heat_maps.push_back(detail::heat_map(
+          measurer.in_canonical(*t->decoded), measurer.yardstick(), options.heat_max_mm, t->variant.name,
+          detail::slug(report.name) + "_" + detail::slug(t->variant.name) + ".glb"));
+    report.variants.push_back(std::move(t->variant));
+  }
+}
+
+} // namespace
+
+Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const CompareOptions& options,
+                                const std::function<void(std::string_view)>& step) {
+  const detail::Clock::time_point start = detail::Clock::now();
+  const std::function<void(std::string_view)> tick = [&](std::string_view what) {
+    if (step) step(what);
+  };
+  ScanReport report{.name = std::string(name),
+                    .source = std::string(name),
+                    .units = scan.units,
+                    .vertices = scan.vertex_count(),
+                    .triangles = scan.triangle_count()};
+  Result<Prepared> prepared = prepare(scan, name, options);
+  if (!prepared) return std::move(prepared).error();
+  report.units_per_mm = 1.0 / prepared->canonical.frame.scale;
+  tick("aligned");
+  Result<Mesh> geometry = variant_geometry(scan, prepared->canonical, options, report);
+  if (!geometry) return std::move(geometry).error();
+
+  const Measurer measurer(*prepared, options, tick);
+  std::vector<Task> tasks = encoding_tasks(*geometry, scan, prepared->alignment, name, options);
+  measurer.run(tasks);
+  share_raw_fidelity(tasks, measurer);
+  std::vector<Task> decimated = decimation_tasks(tasks, *geometry, options, measurer);
+  measurer.run(decimated);
+  add_rows(report, tasks, decimated, measurer, options);
+  report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
+  return report;
+}
+
+Result<std::vector<std::filesystem::path>> expand_inputs(std::span<const std::filesystem::path> inputs) {
+  std::vector<std::filesystem::path> out;
+  for (const std::filesystem::path& in : inputs) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(in, ec)) {
+      std::vector<std::filesystem::path> files;
+      for (const auto& entry : std::filesystem::directory_iterator(in, ec))
+        if (entry.is_regular_file(ec) && formats::format_from_path(entry.path()))
+          files.push_back(entry.path());
+      if (ec) return make_error(ErrorCode::Io, ec.message(), in.string());
+      std::ranges::sort(files);
+      out.insert(out.end(), files.begin(), files.end());
+    } else if (std::filesystem::is_regular_file(in, ec)) {
+      out.push_back(in);
+    } else {
+      return make_error(ErrorCode::Io, "no such file or folder", in.string());
+    }
+  }
+  return out;
+}
+
+std::string Progress::what() const {
+  switch (event) {
+  case ProgressEvent::Done: return fmt::format("done in {:.1f} s", seconds);
+  case ProgressEvent::Failed: return "failed: " + failure;
+  case ProgressEvent::Step: break;
+  }
+  return step;
+}
+
+Report compare_scans(const CompareRequest& request) {
+  const detail::Clock::time_point start = detail::Clock::now();
+  Report report{.options = request.options};
+  const bool sample = request.inputs.empty();
+  const std::size_t count = sample ? 1 : request.inputs.size();
+  report.scans.resize(count);
+  // Steps per scan: aligning, then every variant (the decimated rows at the PDE sizes included).
+  const std::size_t pde_rows = request.options.ratios.size() *
+                               ((request.options.pde_lossy ? 1 : 0) + (request.options.pde_lossless ? 1 : 0));
+  const std::size_t steps = 1 + 2 * kRawFormats.size() + request.options.draco_bits.size() + pde_rows +
+                            request.options.budgets.size() + (request.options.budgets_at_pde ? pde_rows : 0);
+  Progress progress{.steps_total = steps * count, .scans_total = count};
+  std::mutex mutex;
+  // `event` carries the scan, the kind and what goes with it; the counts are the batch's.
+  const auto report_progress = [&](Progress event, std::size_t steps_done) {
+    const std::lock_guard lock(mutex);
+    progress.steps_done = std::min(progress.steps_total, progress.steps_done + steps_done);
+    const bool finished = event.event != ProgressEvent::Step;
+    progress.scans_done += finished ? 1 : 0;
+    progress.scans_failed += event.event == ProgressEvent::Failed ? 1 : 0;
+    progress.scan = std::move(event.scan);
+    progress.event = event.event;
+    progress.step = std::move(event.step);
+    progress.seconds = event.seconds;
+    progress.failure = std::move(event.failure);
+    if (request.progress) request.progress(progress);
+  };
+
+  const unsigned workers = std::min<unsigned>(static_cast<unsigned>(count), detail::cores());
+  CompareOptions options = request.options;
+  if (options.threads == 0) options.threads = std::max(1U, detail::cores() / workers);
+  // Unique names: the heat-map files are named after them.
+  std::vector<std::string> names;
+  std::map<std::string, int> seen;
+  for (std::size_t i = 0; i < count; ++i) {
+    names.push_back(sample ? std::string("sample face") : request.inputs[i].filename().string());
+    if (const int n = seen[names.back()]++; n > 0) names.back() += fmt::format(" ({})", n + 1);
+  }
+  detail::parallel_for(count, workers, [&](std::size_t i) {
+    ScanReport& out = report.scans[i];
+    const std::string& name = names[i];
+    const std::string source = sample ? name : request.inputs[i].string();
+    std::size_t done = 0;
+    const auto fail = [&](const Error& e) {
+      out = ScanReport{.name = name, .source = source, .failure = e.to_string()};
+      report_progress({.scan = name, .event = ProgressEvent::Failed, .failure = e.to_string()}, steps - done);
+    };
+    Mesh mesh;
+    if (sample) {
+      mesh = sample_face();
+    } else {
+      Result<formats::LoadedMesh> loaded = formats::read_mesh(request.inputs[i]);
+      if (!loaded) return fail(loaded.error());
+      mesh = std::move(loaded->mesh);
+    }
+    Result<ScanReport> made = compare_scan(mesh, name, options, [&](std::string_view what) {
+      ++done;
+      report_progress({.scan = name, .step = std::string(what)}, 1);
+    });
+    if (!made) {
+      Error e = std::move(made).error();
+      e.source = source;
+      return fail(e);
+    }
+    out = *std::move(made);
+    out.source = source;
+    report_progress({.scan = name, .event = ProgressEvent::Done, .seconds = out.seconds},
+                    done < steps ? steps - done : 0);
+  });
+  report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
+  return report;
+}
+
+} // namespace pdeface::pipeline
