@@ -4,6 +4,7 @@
 #include "heat_map.hpp"
 #include "report_detail.hpp"
 
+#include "pdeface/core/file.hpp"
 #include "pdeface/svg/svg.hpp"
 
 #include <fmt/format.h>
@@ -290,6 +291,37 @@ std::vector<OutputFile> report_files(const Report& report, const std::filesystem
             {folder / "files" / detail::slug(scan.name) / (detail::slug(v.name) + v.extension), v.encoded});
   }
   return files;
+}
+
+Result<std::size_t> write_report(const Report& report, const std::filesystem::path& folder) {
+  namespace fs = std::filesystem;
+  const std::vector<OutputFile> files = report_files(report, folder);
+  std::vector<fs::path> made; // the folders made here, innermost last
+  const auto unmake = [&] {
+    for (auto it = made.rbegin(); it != made.rend(); ++it) {
+      std::error_code ec;
+      fs::remove(*it, ec); // only if empty
+    }
+  };
+  for (const OutputFile& f : files) {
+    std::vector<fs::path> missing;
+    for (fs::path dir = f.path.parent_path(); !dir.empty() && !fs::exists(dir); dir = dir.parent_path())
+      missing.push_back(dir);
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+      std::error_code ec;
+      if (!fs::create_directory(*it, ec) && ec) {
+        unmake();
+        return make_error(ErrorCode::Io, fmt::format("cannot make the folder: {}", ec.message()),
+                          it->string());
+      }
+      made.push_back(*it);
+    }
+  }
+  if (Result<void> written = write_files_atomic(files); !written) {
+    unmake();
+    return std::move(written).error();
+  }
+  return files.size();
 }
 
 } // namespace pdeface::pipeline

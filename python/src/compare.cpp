@@ -4,7 +4,6 @@
 
 #include "bindings.hpp"
 
-#include "pdeface/core/file.hpp"
 #include "pdeface/core/names.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/pde/surface.hpp"
@@ -209,31 +208,12 @@ pipeline::ScanReport compare_file(const fs::path& path, const std::string& name,
   return *std::move(made);
 }
 
-// The report folder as `pdeface compare --out` writes it: every file or none, and the folders made for
-// them removed again (when still empty) if the files cannot be written.
-void write_report(const pipeline::Report& report, const fs::path& folder) {
-  const std::vector<OutputFile> files = pipeline::report_files(report, folder);
-  std::vector<fs::path> made;
-  for (const OutputFile& f : files) {
-    std::vector<fs::path> missing;
-    for (fs::path dir = f.path.parent_path(); !dir.empty() && !fs::exists(dir); dir = dir.parent_path())
-      missing.push_back(dir);
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-      std::error_code ec;
-      if (!fs::create_directory(*it, ec) && ec)
-        raise(make_error(ErrorCode::Io, "cannot make the folder: " + ec.message(), it->string()));
-      made.push_back(*it);
-    }
-  }
-  Result<void> written = [&] {
+// The report folder as `pdeface compare --out` writes it: every file or none.
+void write_folder(const pipeline::Report& report, const fs::path& folder) {
+  Result<std::size_t> written = [&] {
     const py::gil_scoped_release release;
-    return write_files_atomic(files);
+    return pipeline::write_report(report, folder);
   }();
-  if (!written)
-    for (auto it = made.rbegin(); it != made.rend(); ++it) {
-      std::error_code ec;
-      fs::remove(*it, ec); // only if empty
-    }
   unwrap(std::move(written));
 }
 
@@ -297,7 +277,7 @@ void bind_compare(py::module_& m) {
       [](const std::vector<pipeline::ScanReport>& scans, const py::object& out, double seconds,
          const py::kwargs& kwargs) {
         const pipeline::Report report{.scans = scans, .options = options_from(kwargs), .seconds = seconds};
-        write_report(report, to_path(out));
+        write_folder(report, to_path(out));
         return csv_rows(report);
       },
       py::arg("scans"), py::arg("out"), py::arg("seconds") = 0.0,
@@ -316,7 +296,7 @@ void bind_compare(py::module_& m) {
           const py::gil_scoped_release release;
           return pipeline::compare_scans({.inputs = std::move(files), .options = o});
         }();
-        if (out) write_report(report, *out);
+        if (out) write_folder(report, *out);
         return csv_rows(report);
       },
       py::arg("inputs"), py::arg("out") = py::none(),

@@ -63,31 +63,6 @@ private:
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
-// The report folder and the folders inside it, made first; removed again (when we made them and they are
-// still empty) if the files cannot be written.
-Result<void> write_report(const std::vector<OutputFile>& files) {
-  std::vector<fs::path> made;
-  for (const OutputFile& f : files) {
-    std::vector<fs::path> missing;
-    for (fs::path dir = f.path.parent_path(); !dir.empty() && !fs::exists(dir); dir = dir.parent_path())
-      missing.push_back(dir);
-    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
-      std::error_code ec;
-      if (!fs::create_directory(*it, ec) && ec)
-        return make_error(ErrorCode::Io, fmt::format("cannot make the folder: {}", ec.message()),
-                          it->string());
-      made.push_back(*it);
-    }
-  }
-  Result<void> written = write_outputs(files);
-  if (!written)
-    for (auto it = made.rbegin(); it != made.rend(); ++it) {
-      std::error_code ec;
-      fs::remove(*it, ec); // only if empty
-    }
-  return written;
-}
-
 int run_compare(CompareArgs args) {
   Result<std::vector<fs::path>> inputs = pipeline::expand_inputs(args.in);
   if (!inputs) return fail(inputs.error());
@@ -104,8 +79,8 @@ int run_compare(CompareArgs args) {
   ProgressPrinter printer(args.quiet);
   const pipeline::Report report =
       pipeline::compare_scans({.inputs = *inputs, .options = o, .progress = std::ref(printer)});
-  const std::vector<OutputFile> files = pipeline::report_files(report, args.out);
-  if (Result<void> ok = write_report(files); !ok) return fail(ok.error());
+  const Result<std::size_t> files = pipeline::write_report(report, args.out);
+  if (!files) return fail(files.error());
 
   for (const pipeline::ScanReport& s : report.scans) {
     if (!s.failure.empty()) {
@@ -133,7 +108,7 @@ int run_compare(CompareArgs args) {
       "{} scan{} ({} failed) -> {}/report.md, report.html, report.json, report.csv, rd.svg and {} heat-map "
       "GLB{}\n",
       report.scans.size(), report.scans.size() == 1 ? "" : "s", report.failed(), args.out.string(),
-      files.size() - 5, files.size() == 6 ? "" : "s");
+      *files - 5, *files == 6 ? "" : "s");
   return report.failed() > 0 ? kDataError : 0;
 }
 

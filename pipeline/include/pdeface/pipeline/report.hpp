@@ -164,6 +164,10 @@ expand_inputs(std::span<const std::filesystem::path> inputs);
 //! The report's documents (`report.md`, `report.json`, `report.csv`, `rd.svg`, `report.html`) and the
 //! heat-map GLBs, as files under `folder`, to be written as one set (`write_files_atomic`).
 [[nodiscard]] std::vector<OutputFile> report_files(const Report& report, const std::filesystem::path& folder);
+//! `report_files` written as one set (`write_files_atomic`), the folders they need made first and removed
+//! again (when still empty) if the files cannot be written: every file or none. Returns how many were
+//! written. Errors: `Io`.
+[[nodiscard]] Result<std::size_t> write_report(const Report& report, const std::filesystem::path& folder);
 
 [[nodiscard]] std::string report_markdown(const Report& report);
 [[nodiscard]] std::string report_csv(const Report& report);
