@@ -399,46 +399,65 @@ Report compare_scans(const CompareRequest& request) {
   const unsigned workers = std::min<unsigned>(static_cast<unsigned>(count), detail::cores());
   CompareOptions options = request.options;
   if (options.threads == 0) options.threads = std::max(1U, detail::cores() / workers);
-  // Unique names: the heat-map files are named after them.
-  std::vector<std::string> names;
-  std::map<std::string, int> seen;
-  for (std::size_t i = 0; i < count; ++i) {
-    names.push_back(sample ? std::string("sample face") : request.inputs[i].filename().string());
-    if (const int n = seen[names.back()]++; n > 0) names.back() += fmt::format(" ({})", n + 1);
-  }
+  const std::vector<std::string> names =
+      sample ? std::vector<std::string>{"sample face"} : scan_names(request.inputs);
   detail::parallel_for(count, workers, [&](std::size_t i) {
     ScanReport& out = report.scans[i];
     const std::string& name = names[i];
-    const std::string source = sample ? name : request.inputs[i].string();
     std::size_t done = 0;
-    const auto fail = [&](const Error& e) {
-      out = ScanReport{.name = name, .source = source, .failure = e.to_string()};
-      report_progress({.scan = name, .event = ProgressEvent::Failed, .failure = e.to_string()}, steps - done);
-    };
-    Mesh mesh;
-    if (sample) {
-      mesh = sample_face();
-    } else {
-      Result<formats::LoadedMesh> loaded = formats::read_mesh(request.inputs[i]);
-      if (!loaded) return fail(loaded.error());
-      mesh = std::move(loaded->mesh);
-    }
-    Result<ScanReport> made = compare_scan(mesh, name, options, [&](std::string_view what) {
+    const auto step = [&](std::string_view what) {
       ++done;
       report_progress({.scan = name, .step = std::string(what)}, 1);
-    });
-    if (!made) {
-      Error e = std::move(made).error();
-      e.source = source;
-      return fail(e);
+    };
+    if (sample) {
+      Result<ScanReport> made = compare_scan(sample_face(), name, options, step);
+      if (made) {
+        out = *std::move(made);
+      } else {
+        Error e = std::move(made).error();
+        e.source = name;
+        out = ScanReport{.name = name, .failure = e.to_string()};
+      }
+      out.source = name;
+    } else {
+      out = compare_file(request.inputs[i], name, options, step);
     }
-    out = *std::move(made);
-    out.source = source;
-    report_progress({.scan = name, .event = ProgressEvent::Done, .seconds = out.seconds},
-                    done < steps ? steps - done : 0);
+    if (!out.failure.empty())
+      report_progress({.scan = name, .event = ProgressEvent::Failed, .failure = out.failure}, steps - done);
+    else
+      report_progress({.scan = name, .event = ProgressEvent::Done, .seconds = out.seconds},
+                      done < steps ? steps - done : 0);
   });
   report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
   return report;
+}
+
+ScanReport compare_file(const std::filesystem::path& path, std::string_view name,
+                        const CompareOptions& options, const std::function<void(std::string_view)>& step) {
+  const std::string source = path.string();
+  const auto failed = [&](const Error& e) {
+    return ScanReport{.name = std::string(name), .source = source, .failure = e.to_string()};
+  };
+  Result<formats::LoadedMesh> loaded = formats::read_mesh(path);
+  if (!loaded) return failed(loaded.error());
+  Result<ScanReport> made = compare_scan(loaded->mesh, name, options, step);
+  if (!made) {
+    Error e = std::move(made).error();
+    e.source = source; // the file, not the name the scan was compared under
+    return failed(e);
+  }
+  made->source = source;
+  return *std::move(made);
+}
+
+std::vector<std::string> scan_names(std::span<const std::filesystem::path> inputs) {
+  std::vector<std::string> names;
+  std::map<std::string, int> seen;
+  for (const std::filesystem::path& p : inputs) {
+    names.push_back(p.filename().string());
+    if (const int n = seen[names.back()]++; n > 0) names.back() += fmt::format(" ({})", n + 1);
+  }
+  return names;
 }
 
 } // namespace pdeface::pipeline

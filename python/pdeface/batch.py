@@ -18,7 +18,6 @@ import glob
 import os
 import sys
 import time
-from collections import Counter
 from typing import Iterable, List, Optional, Sequence
 
 from . import _pdeface
@@ -47,17 +46,6 @@ def scan_paths(inputs: Iterable[str]) -> List[str]:
     return paths
 
 
-def _names(paths: Sequence[str]) -> List[str]:
-    """File names, made unique as the command makes them (the heat maps are named after them)."""
-    seen: Counter = Counter()
-    names = []
-    for p in paths:
-        name = os.path.basename(p)
-        seen[name] += 1
-        names.append(name if seen[name] == 1 else f"{name} ({seen[name]})")
-    return names
-
-
 def _compare_one(path: str, name: str, options: dict) -> "_pdeface.ScanReport":
     return _pdeface.compare_file(path, name, **options)
 
@@ -77,7 +65,7 @@ def run(inputs: Iterable[str], out: Optional[str] = None, *, client=None, worker
     paths = scan_paths(inputs)
     if not paths:
         raise FileNotFoundError("no scan files in " + ", ".join(map(str, inputs)))
-    names = _names(paths)
+    names = _pdeface.scan_names(paths)
     options = dict(options)
     options.setdefault("threads", 1)  # one scan per worker process, one core each
     own_cluster = None
@@ -103,13 +91,7 @@ def run(inputs: Iterable[str], out: Optional[str] = None, *, client=None, worker
     report_options = {k: v for k, v in options.items() if k != "threads"}
     if out is not None:
         return _pdeface.write_report(reports, out, seconds, **report_options)
-    return _rows(reports, report_options)
-
-
-def _rows(reports, options) -> List[dict]:
-    import tempfile
-    with tempfile.TemporaryDirectory() as scratch:
-        return _pdeface.write_report(reports, os.path.join(scratch, "report"), 0.0, **options)
+    return _pdeface.report_rows(reports, **report_options)
 
 
 def main(argv: Optional[Sequence[str]] = None) -> int:

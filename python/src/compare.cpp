@@ -189,25 +189,6 @@ pipeline::CompareOptions options_from(const py::dict& kwargs) {
   return o;
 }
 
-// One scan file, as `compare_scans` treats each: read, compared, or a report that says why not.
-pipeline::ScanReport compare_file(const fs::path& path, const std::string& name,
-                                  const pipeline::CompareOptions& o) {
-  const py::gil_scoped_release release;
-  const auto failed = [&](const Error& e) {
-    return pipeline::ScanReport{.name = name, .source = path.string(), .failure = e.to_string()};
-  };
-  Result<formats::LoadedMesh> loaded = formats::read_mesh(path);
-  if (!loaded) return failed(loaded.error());
-  Result<pipeline::ScanReport> made = pipeline::compare_scan(loaded->mesh, name, o);
-  if (!made) {
-    Error e = std::move(made).error();
-    e.source = path.string();
-    return failed(e);
-  }
-  made->source = path.string();
-  return *std::move(made);
-}
-
 // The report folder as `pdeface compare --out` writes it: every file or none.
 void write_folder(const pipeline::Report& report, const fs::path& folder) {
   Result<std::size_t> written = [&] {
@@ -267,7 +248,9 @@ void bind_compare(py::module_& m) {
       "compare_file",
       [](const py::object& path, const std::string& name, const py::kwargs& kwargs) {
         const pipeline::CompareOptions o = options_from(kwargs);
-        return compare_file(to_path(path), name, o);
+        const fs::path file = to_path(path);
+        const py::gil_scoped_release release;
+        return pipeline::compare_file(file, name, o);
       },
       py::arg("path"), py::arg("name"),
       "One scan compared (the options of compare()); a scan that cannot be read or has no face is a report "
@@ -283,6 +266,15 @@ void bind_compare(py::module_& m) {
       py::arg("scans"), py::arg("out"), py::arg("seconds") = 0.0,
       "The report folder of these scans' reports (report.md, .json, .csv, .html, rd.svg, heat-map GLBs), "
       "written as one set; returns the CSV's rows");
+  m.def(
+      "report_rows",
+      [](const std::vector<pipeline::ScanReport>& scans, const py::kwargs& kwargs) {
+        return csv_rows({.scans = scans, .options = options_from(kwargs)});
+      },
+      py::arg("scans"), "The rows of report.csv for these scans' reports, as dicts (nothing written)");
+  m.def(
+      "scan_names", [](const std::vector<fs::path>& inputs) { return pipeline::scan_names(inputs); },
+      py::arg("inputs"), "The names compare gives these scan files: file names, repeated ones made unique");
   m.def(
       "expand_inputs",
       [](const std::vector<fs::path>& inputs) { return unwrap(pipeline::expand_inputs(inputs)); },

@@ -128,11 +128,7 @@ py::dict detect(const Mesh& mesh, const std::string& source) {
     const py::gil_scoped_release release;
     return align::detect_landmarks(mesh);
   }();
-  if (!d) {
-    Error e = std::move(d).error();
-    if (e.source.empty()) e.source = source;
-    raise(e);
-  }
+  if (!d) raise(with_source(std::move(d).error(), source));
   return landmarks_dict(d->landmarks);
 }
 

@@ -160,6 +160,14 @@ expand_inputs(std::span<const std::filesystem::path> inputs);
 //! Reads and compares every scan, several at a time across the cores; a scan that cannot be read or has
 //! no face is a `ScanReport` with `failure`, and the others go on.
 [[nodiscard]] Report compare_scans(const CompareRequest& request);
+//! One scan file read and compared as `compare_scans` compares each (named `name`, `step` as in
+//! `compare_scan`): a scan that cannot be read or has no face is a report with its `failure`, never an error.
+[[nodiscard]] ScanReport compare_file(const std::filesystem::path& path, std::string_view name,
+                                      const CompareOptions& options,
+                                      const std::function<void(std::string_view)>& step = {});
+//! The names `compare_scans` gives its inputs: their file names, a repeated one made unique (" (2)", ...);
+//! the heat-map files are named after them.
+[[nodiscard]] std::vector<std::string> scan_names(std::span<const std::filesystem::path> inputs);
 
 //! The report's documents (`report.md`, `report.json`, `report.csv`, `rd.svg`, `report.html`) and the
 //! heat-map GLBs, as files under `folder`, to be written as one set (`write_files_atomic`).
