@@ -13,6 +13,7 @@
 namespace pdeface::pipeline {
 namespace {
 
+// Computed once per process: the Table suite runs in one process (tests/CMakeLists.txt).
 const std::vector<TableRow>& rows() {
   static const std::vector<TableRow> r = [] {
     const Mesh face = sample_face();
