@@ -4,10 +4,12 @@
 #include "pdeface/draco/draco.hpp"
 #include "pdeface/gltf/gltf.hpp"
 #include "pdeface/obj/obj.hpp"
+#include "pdeface/off/off.hpp"
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
 #include "pdeface/ply/binary.hpp"
 #include "pdeface/ply/ply.hpp"
+#include "pdeface/stl/stl.hpp"
 #include "pdeface/vrml/vrml.hpp"
 
 #include <fmt/format.h>

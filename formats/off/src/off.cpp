@@ -3,7 +3,7 @@
 // cannot see what the header line announces (COFF, NOFF), so it reads every stream as plain OFF
 // (third_party_notes/openmesh.md).
 
-#include "pdeface/ply/ply.hpp"
+#include "pdeface/off/off.hpp"
 
 #include "pdeface/core/text.hpp"
 #include "pdeface/openmesh_io/openmesh_io.hpp"

@@ -2,6 +2,7 @@
 
 #include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/off/off.hpp"
 #include "pdeface/ply/ply.hpp"
 
 #include <gtest/gtest.h>

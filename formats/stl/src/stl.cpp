@@ -5,7 +5,7 @@
 // merged into degenerate facets (found by fuzzing). The validator reads every corner anyway, so it builds
 // the mesh: equal corners merged into shared vertices, exactly.
 
-#include "pdeface/ply/ply.hpp"
+#include "pdeface/stl/stl.hpp"
 
 #include "pdeface/core/bytes.hpp"
 #include "pdeface/core/text.hpp"
