@@ -16,7 +16,7 @@
 #include <limits>
 #include <new>
 
-namespace pdeface::draco {
+namespace pdeface::drc {
 namespace {
 
 using bitstream::Origin;
@@ -273,4 +273,4 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   return std::move(decoded->mesh);
 }
 
-} // namespace pdeface::draco
+} // namespace pdeface::drc

@@ -14,7 +14,7 @@
 #include <optional>
 #include <span>
 
-namespace pdeface::draco {
+namespace pdeface::drc {
 namespace {
 
 std::optional<Error> check_range(std::string_view what, int value, int lo, int hi,
@@ -229,4 +229,4 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
   return std::move(encoded->bytes);
 }
 
-} // namespace pdeface::draco
+} // namespace pdeface::drc
