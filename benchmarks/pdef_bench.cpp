@@ -159,9 +159,9 @@ void libdraco_decode(benchmark::State& state, Memory memory) {
   {
     const FaultCounter faults(state);
     for (auto _ : state) {
-      ::draco::DecoderBuffer buffer;
+      draco::DecoderBuffer buffer;
       buffer.Init(bytes.data(), bytes.size());
-      ::draco::Decoder decoder;
+      draco::Decoder decoder;
       auto mesh = decoder.DecodeMeshFromBuffer(&buffer);
       if (!mesh.ok()) return state.SkipWithError(mesh.status().error_msg());
       vertices = mesh.value()->num_points();
