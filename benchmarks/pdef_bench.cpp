@@ -68,7 +68,7 @@ const Corpus& corpus() {
     request.residual = {};
     request.encoding.lossless = true;
     out.lossless = pipeline::encode_request(scan, request).value().encoded.bytes;
-    out.draco = pdeface::draco::write(scan, {.position_bits = 11, .level = 7}).value();
+    out.draco = pdeface::drc::write(scan, {.position_bits = 11, .level = 7}).value();
     std::fprintf(
         stderr, "pdef_bench: %s (%zu vertices): .pdef %zu bytes lossy, %zu lossless; Draco %zu bytes\n",
         out.origin.c_str(), out.scan_vertices, out.lossy.size(), out.lossless.size(), out.draco.size());
@@ -159,9 +159,9 @@ void libdraco_decode(benchmark::State& state, Memory memory) {
   {
     const FaultCounter faults(state);
     for (auto _ : state) {
-      ::draco::DecoderBuffer buffer;
+      draco::DecoderBuffer buffer;
       buffer.Init(bytes.data(), bytes.size());
-      ::draco::Decoder decoder;
+      draco::Decoder decoder;
       auto mesh = decoder.DecodeMeshFromBuffer(&buffer);
       if (!mesh.ok()) return state.SkipWithError(mesh.status().error_msg());
       vertices = mesh.value()->num_points();
@@ -177,7 +177,7 @@ void draco_to_mesh(benchmark::State& state) {
   const std::string& bytes = corpus_with(Memory::Reused).draco;
   std::size_t vertices = 0;
   for (auto _ : state) {
-    Result<Mesh> mesh = pdeface::draco::read(bytes, "scan.drc");
+    Result<Mesh> mesh = pdeface::drc::read(bytes, "scan.drc");
     if (!mesh) return state.SkipWithError(mesh.error().to_string().c_str());
     vertices = mesh->vertex_count();
     benchmark::DoNotOptimize(mesh);

@@ -19,7 +19,7 @@ seeds="$build/seeds"
 if [[ ! -d "$seeds" ]]; then # the fixtures as they are, and each mesh fixture in every writable format
   mkdir -p "$seeds"/{vrml,obj,ply,off,stl,gltf,draco,pdef}
   cp "$data"/vrml/*.wrl "$seeds/vrml/"; cp "$data"/obj/*.obj "$seeds/obj/"; cp "$data"/ply/*.ply "$seeds/ply/"
-  cp "$data"/ply/*.off "$seeds/off/"; cp "$data"/ply/*.stl "$seeds/stl/"; cp "$data"/gltf/*.gl* "$seeds/gltf/"
+  cp "$data"/off/*.off "$seeds/off/"; cp "$data"/stl/*.stl "$seeds/stl/"; cp "$data"/gltf/*.gl* "$seeds/gltf/"
   cp "$data"/draco/*.drc "$seeds/draco/"; cp "$data"/pdef/*.pdef "$seeds/pdef/"
   for f in "$data"/vrml/v2_attributes.wrl "$data"/obj/*.obj "$data"/ply/attributes_ascii.ply; do
     name=$(basename "${f%.*}")

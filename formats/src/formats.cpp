@@ -4,10 +4,12 @@
 #include "pdeface/draco/draco.hpp"
 #include "pdeface/gltf/gltf.hpp"
 #include "pdeface/obj/obj.hpp"
+#include "pdeface/off/off.hpp"
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
 #include "pdeface/ply/binary.hpp"
 #include "pdeface/ply/ply.hpp"
+#include "pdeface/stl/stl.hpp"
 #include "pdeface/vrml/vrml.hpp"
 
 #include <fmt/format.h>
@@ -90,7 +92,7 @@ Result<Mesh> decode(Format format, std::string_view bytes, std::string_view sour
   case Format::Stl: return stl::read(bytes, source, notes);
   case Format::Gltf:
   case Format::Glb: return gltf::read(bytes, source, notes);
-  case Format::Draco: return draco::read(bytes, source, notes);
+  case Format::Draco: return drc::read(bytes, source, notes);
   case Format::Pdef: return read_pdef(bytes, source, options);
   }
   return make_error(ErrorCode::UnsupportedFormat, "unknown format", std::string(source));
@@ -228,9 +230,9 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
                       fmt::format("{} cannot hold a point cloud (the mesh has no triangles)", fi.name),
                       source);
   const Mesh fitted = fit_to(fi, mesh, notes);
-  const draco::WriteOptions draco_options{.position_bits = options.draco_bits, .level = options.draco_level};
+  const drc::WriteOptions draco_options{.position_bits = options.draco_bits, .level = options.draco_level};
   if (*format == Format::Draco || options.draco_in_gltf) {
-    if (Result<void> ok = draco::check(draco_options); !ok) {
+    if (Result<void> ok = drc::check(draco_options); !ok) {
       Error e = std::move(ok).error();
       e.source = source;
       return e;
@@ -250,7 +252,7 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
                          {.binary = *format == Format::Glb,
                           .draco = options.draco_in_gltf ? std::optional(draco_options) : std::nullopt},
                          notes);
-    case Format::Draco: return draco::write(fitted, draco_options, notes);
+    case Format::Draco: return drc::write(fitted, draco_options, notes);
     case Format::Pdef: break; // not writable: refused above
     }
     return make_error(ErrorCode::UnsupportedFormat, "unknown format", source);

@@ -28,7 +28,7 @@ const Finding kFindings[] = {
      1,
      {},
      "'0e801' (a colour): 0 to fast_float, 0 x inf = NaN to tinyobjloader; written as -nan, refused on read"},
-    {"ply/fuzz_tiny_corners.stl",
+    {"stl/fuzz_tiny_corners.stl",
      4,
      {},
      "corners 5e-39 apart: merged by OpenMesh's STL epsilon (FLT_MIN) into a degenerate facet on reading "
@@ -38,7 +38,7 @@ const Finding kFindings[] = {
      {},
      "corners 9e-44 apart: OpenMesh's STL reader merged them (FLT_MIN apart is equal to it), 6 of 8 facets "
      "lost in an STL round trip"},
-    {"ply/fuzz_one_triangle.off",
+    {"off/fuzz_one_triangle.off",
      4,
      {},
      "one triangle: libdraco's sequential encoder (level 0) wrote data its own decoder refuses"},

@@ -6,7 +6,9 @@
 # modules/ includes pdeface/formats or a format's headers (pdeface/ply, pdeface/pdef, ...), nothing under
 # formats/ includes pdeface/pipeline, and core includes core alone. Each library target may link targets of
 # its own layer and below. A header's layer is the folder that provides it (<folder>/include/pdeface/<name>
-# or <folder>/internal/pdeface/<name>); a target's is the folder that defines it.
+# or <folder>/internal/pdeface/<name>); a target's is the folder that defines it. The headers in a formats
+# folder's internal/ (what several formats share: pdeface/openmesh_io/, pdeface/draco/detail.hpp) are not
+# installed and not an API: only files under formats/ include them.
 #
 # cmake -DSOURCE=<source tree> [-DGRAPH=<build>/layering.txt] -P check_layers.cmake
 # GRAPH (written at configure time by pdeface_write_layering): "target|folder|dep;dep;..." per line.
@@ -47,6 +49,10 @@ foreach(dir IN LISTS header_dirs)
   endif()
 endforeach()
 
+# The headers private to formats/, as included ("pdeface/openmesh_io/openmesh_io.hpp").
+file(GLOB_RECURSE formats_internal RELATIVE ${SOURCE} ${SOURCE}/formats/*/internal/pdeface/*)
+list(TRANSFORM formats_internal REPLACE "^formats/[^/]+/internal/" "")
+
 set(failures "")
 set(files_checked 0)
 set(includes_checked 0)
@@ -60,8 +66,11 @@ foreach(file IN LISTS sources)
   file(STRINGS ${SOURCE}/${file} lines REGEX "^[ \t]*#[ \t]*include[ \t]*[\"<]pdeface/")
   foreach(line IN LISTS lines)
     string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[\"<]pdeface/([^/\">]+).*$" "\\1" name "${line}")
+    string(REGEX REPLACE "^[ \t]*#[ \t]*include[ \t]*[\"<](pdeface/[^\">]+).*$" "\\1" header "${line}")
     math(EXPR includes_checked "${includes_checked} + 1")
-    if(NOT DEFINED header_layer_${name})
+    if(header IN_LIST formats_internal AND NOT file MATCHES "^formats/")
+      list(APPEND failures "${file} includes ${header}, which is internal to formats/")
+    elseif(NOT DEFINED header_layer_${name})
       list(APPEND failures "${file}: includes pdeface/${name}/, which no folder provides")
     elseif(header_layer_${name} GREATER layer)
       list(GET layer_names ${layer} from)

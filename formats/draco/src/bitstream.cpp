@@ -7,7 +7,7 @@
 
 #include <cstring>
 
-namespace pdeface::draco::bitstream {
+namespace pdeface::drc::bitstream {
 namespace {
 
 constexpr std::string_view kMagic = "DRACO";
@@ -207,4 +207,4 @@ Result<Header> check(std::string_view bytes, const Origin& origin) {
   return header;
 }
 
-} // namespace pdeface::draco::bitstream
+} // namespace pdeface::drc::bitstream

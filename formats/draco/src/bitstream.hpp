@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-namespace pdeface::draco::bitstream {
+namespace pdeface::drc::bitstream {
 
 inline constexpr std::size_t kHeaderSize = 11;
 
@@ -39,4 +39,4 @@ struct Header {
 //! `Truncated`, `Malformed`, `CountTooLarge`, each at the byte where the problem starts.
 [[nodiscard]] Result<Header> check(std::string_view bytes, const Origin& origin);
 
-} // namespace pdeface::draco::bitstream
+} // namespace pdeface::drc::bitstream

@@ -16,16 +16,16 @@
 #include <limits>
 #include <new>
 
-namespace pdeface::draco {
+namespace pdeface::drc {
 namespace {
 
 using bitstream::Origin;
-using ::draco::GeometryAttribute;
+using draco::GeometryAttribute;
 
-detail::ValueType value_type(::draco::DataType type) {
+detail::ValueType value_type(draco::DataType type) {
   switch (type) {
-  case ::draco::DT_UINT8: return detail::ValueType::UnsignedByte;
-  case ::draco::DT_UINT16: return detail::ValueType::UnsignedShort;
+  case draco::DT_UINT8: return detail::ValueType::UnsignedByte;
+  case draco::DT_UINT16: return detail::ValueType::UnsignedShort;
   default: return detail::ValueType::Float;
   }
 }
@@ -45,25 +45,25 @@ std::string_view attribute_name(GeometryAttribute::Type type) {
 // libdraco does not say where in the data an attribute's values were.
 class Converter {
 public:
-  Converter(const ::draco::PointCloud& pc, std::string_view source) : pc_(pc), source_(source) {}
+  Converter(const draco::PointCloud& pc, std::string_view source) : pc_(pc), source_(source) {}
 
   // Every attribute's data type and point map, not only those we read: glTF refers to any attribute by
   // unique id, and tinygltf reads them unchecked.
   [[nodiscard]] std::optional<Error> check_point_maps() const {
     const std::size_t points = pc_.num_points();
     for (int i = 0; i < pc_.num_attributes(); ++i) {
-      const ::draco::PointAttribute& a = *pc_.attribute(i);
+      const draco::PointAttribute& a = *pc_.attribute(i);
       const std::string_view what = attribute_name(a.attribute_type());
       // Numbers only: libdraco converts a BOOL attribute's bytes by loading them as bools (undefined for
       // any byte but 0 and 1), and has no conversion for the invalid types.
-      if (a.data_type() < ::draco::DT_INT8 || a.data_type() > ::draco::DT_FLOAT64)
+      if (a.data_type() < draco::DT_INT8 || a.data_type() > draco::DT_FLOAT64)
         return error(ErrorCode::Malformed, fmt::format("the {} attribute's data type {} is not a number type",
                                                        what, static_cast<int>(a.data_type())));
       if (!a.is_mapping_identity() && a.indices_map_size() < points)
         return error(ErrorCode::Malformed, fmt::format("the {} point map has {} entries for {} points", what,
                                                        a.indices_map_size(), points));
       for (std::uint32_t p = 0; p < points; ++p)
-        if (const ::draco::AttributeValueIndex index = a.mapped_index(::draco::PointIndex(p));
+        if (const draco::AttributeValueIndex index = a.mapped_index(draco::PointIndex(p));
             index.value() >= a.size())
           return error(ErrorCode::IndexOutOfRange,
                        fmt::format("point {} refers to {} value {} of {}", p, what, index.value(), a.size()));
@@ -74,11 +74,11 @@ public:
   // Calls put(point, values) with N components per point (missing components are 0); the point maps
   // must have been checked.
   template <int N, class Put>
-  std::optional<Error> values(const ::draco::PointAttribute& attribute, Put put) const {
+  std::optional<Error> values(const draco::PointAttribute& attribute, Put put) const {
     const std::string_view what = attribute_name(attribute.attribute_type());
     std::array<float, N> v{};
     for (std::uint32_t p = 0; p < pc_.num_points(); ++p) {
-      const ::draco::AttributeValueIndex index = attribute.mapped_index(::draco::PointIndex(p));
+      const draco::AttributeValueIndex index = attribute.mapped_index(draco::PointIndex(p));
       if (!attribute.ConvertValue<float>(index, static_cast<std::int8_t>(N), v.data()))
         return error(ErrorCode::Malformed,
                      fmt::format("{} value {} cannot be read as numbers", what, index.value()));
@@ -95,22 +95,21 @@ public:
   }
 
 private:
-  const ::draco::PointCloud& pc_;
+  const draco::PointCloud& pc_;
   std::string_view source_;
 };
 
 // Integer colours stored without Draco's `normalized` flag still mean 0..max.
-float color_scale(const ::draco::PointAttribute& attribute) {
+float color_scale(const draco::PointAttribute& attribute) {
   if (attribute.normalized()) return 1.0f;
   switch (attribute.data_type()) {
-  case ::draco::DT_UINT8: return 1.0f / std::numeric_limits<std::uint8_t>::max();
-  case ::draco::DT_UINT16: return 1.0f / std::numeric_limits<std::uint16_t>::max();
+  case draco::DT_UINT8: return 1.0f / std::numeric_limits<std::uint8_t>::max();
+  case draco::DT_UINT16: return 1.0f / std::numeric_limits<std::uint16_t>::max();
   default: return 1.0f;
   }
 }
 
-std::optional<Error> read_positions(const Converter& c, const ::draco::PointAttribute* attribute,
-                                    Mesh& mesh) {
+std::optional<Error> read_positions(const Converter& c, const draco::PointAttribute* attribute, Mesh& mesh) {
   if (!attribute) return c.error(ErrorCode::Malformed, "the Draco data has no position attribute");
   if (attribute->num_components() != 3)
     return c.error(ErrorCode::Malformed,
@@ -122,9 +121,9 @@ std::optional<Error> read_positions(const Converter& c, const ::draco::PointAttr
 }
 
 // The optional attributes: read when their shape is one we hold, else dropped with a note.
-std::optional<Error> read_optional(const Converter& c, const ::draco::PointCloud& pc, Mesh& mesh,
+std::optional<Error> read_optional(const Converter& c, const draco::PointCloud& pc, Mesh& mesh,
                                    Notes* notes) {
-  auto usable = [&](const ::draco::PointAttribute* attribute, std::initializer_list<int> components) {
+  auto usable = [&](const draco::PointAttribute* attribute, std::initializer_list<int> components) {
     if (!attribute) return false;
     if (std::ranges::find(components, attribute->num_components()) != components.end()) return true;
     if (notes)
@@ -158,10 +157,10 @@ std::optional<Error> read_optional(const Converter& c, const ::draco::PointCloud
 }
 
 // Notes the attributes beyond the first of each kind, and those of kinds we do not hold.
-void note_unused(const ::draco::PointCloud& pc, Notes* notes) {
+void note_unused(const draco::PointCloud& pc, Notes* notes) {
   if (!notes) return;
   for (int i = 0; i < pc.num_attributes(); ++i) {
-    const ::draco::PointAttribute* a = pc.attribute(i);
+    const draco::PointAttribute* a = pc.attribute(i);
     const GeometryAttribute::Type type = a->attribute_type();
     if (type == GeometryAttribute::GENERIC || type >= GeometryAttribute::NAMED_ATTRIBUTES_COUNT)
       notes->push_back(fmt::format("Draco attribute {} (generic) dropped", a->unique_id()));
@@ -171,7 +170,7 @@ void note_unused(const ::draco::PointCloud& pc, Notes* notes) {
   }
 }
 
-void read_units(const ::draco::PointCloud& pc, Mesh& mesh, Notes* notes) {
+void read_units(const draco::PointCloud& pc, Mesh& mesh, Notes* notes) {
   std::string text;
   if (!pc.GetMetadata() || !pc.GetMetadata()->GetEntryString("units", &text)) return;
   if (const std::optional<Units> units = units_from_string(text)) {
@@ -182,8 +181,8 @@ void read_units(const ::draco::PointCloud& pc, Mesh& mesh, Notes* notes) {
 }
 
 // libdraco's geometry as our mesh, checked.
-Result<detail::Decoded> convert(const ::draco::PointCloud& pc, const ::draco::Mesh* dm,
-                                std::string_view source, Notes* notes) {
+Result<detail::Decoded> convert(const draco::PointCloud& pc, const draco::Mesh* dm, std::string_view source,
+                                Notes* notes) {
   const Converter c(pc, source);
   detail::Decoded out;
   Mesh& mesh = out.mesh;
@@ -195,15 +194,15 @@ Result<detail::Decoded> convert(const ::draco::PointCloud& pc, const ::draco::Me
   note_unused(pc, notes);
   if (dm) {
     mesh.triangles.resize(dm->num_faces());
-    for (::draco::FaceIndex f(0); f < dm->num_faces(); ++f) {
-      const ::draco::Mesh::Face& face = dm->face(f);
+    for (draco::FaceIndex f(0); f < dm->num_faces(); ++f) {
+      const draco::Mesh::Face& face = dm->face(f);
       mesh.triangles[f.value()] = {face[0].value(), face[1].value(), face[2].value()};
     }
   }
   read_units(pc, mesh, notes);
   if (Result<void> valid = validate(mesh, source); !valid) return std::move(valid).error();
   for (int i = 0; i < pc.num_attributes(); ++i) {
-    const ::draco::PointAttribute* a = pc.attribute(i);
+    const draco::PointAttribute* a = pc.attribute(i);
     out.attributes.push_back(
         {static_cast<int>(a->unique_id()), a->num_components(), value_type(a->data_type())});
   }
@@ -229,12 +228,12 @@ Result<Decoded> decode(std::string_view bytes, std::string_view source, std::opt
   Result<bitstream::Header> header = bitstream::check(bytes, origin);
   if (!header) return std::move(header).error();
 
-  ::draco::DecoderBuffer buffer;
+  draco::DecoderBuffer buffer;
   buffer.Init(bytes.data(), bytes.size());
-  ::draco::Decoder decoder;
+  draco::Decoder decoder;
   // libdraco says what failed, not where: we locate the error where it stopped reading (it re-points the
   // buffer inside our bytes as it goes), and call it truncated only when that is the end of the data.
-  auto failure = [&](const ::draco::Status& status) {
+  auto failure = [&](const draco::Status& status) {
     const auto head = reinterpret_cast<std::uintptr_t>(buffer.data_head());
     const auto start = reinterpret_cast<std::uintptr_t>(bytes.data());
     const bool inside = head >= start && head - start <= bytes.size();
@@ -273,4 +272,4 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   return std::move(decoded->mesh);
 }
 
-} // namespace pdeface::draco
+} // namespace pdeface::drc

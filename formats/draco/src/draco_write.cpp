@@ -14,7 +14,7 @@
 #include <optional>
 #include <span>
 
-namespace pdeface::draco {
+namespace pdeface::drc {
 namespace {
 
 std::optional<Error> check_range(std::string_view what, int value, int lo, int hi,
@@ -27,16 +27,16 @@ std::optional<Error> check_range(std::string_view what, int value, int lo, int h
 // Adds a per-point attribute of N components of type T (identity mapping: value i belongs to point i)
 // filled by `value_of(i)`; returns its description for glTF.
 template <class T, int N, class ValueOf>
-detail::Attribute add_attribute(::draco::PointCloud& pc, ::draco::GeometryAttribute::Type type,
-                                ::draco::DataType data_type, detail::ValueType value_type, std::size_t count,
+detail::Attribute add_attribute(draco::PointCloud& pc, draco::GeometryAttribute::Type type,
+                                draco::DataType data_type, detail::ValueType value_type, std::size_t count,
                                 ValueOf value_of) {
-  ::draco::GeometryAttribute ga;
+  draco::GeometryAttribute ga;
   ga.Init(type, nullptr, N, data_type, value_type != detail::ValueType::Float, sizeof(T) * N, 0);
-  const int id = pc.AddAttribute(ga, true, static_cast<::draco::PointIndex::ValueType>(count));
-  ::draco::PointAttribute* attribute = pc.attribute(id);
+  const int id = pc.AddAttribute(ga, true, static_cast<draco::PointIndex::ValueType>(count));
+  draco::PointAttribute* attribute = pc.attribute(id);
   for (std::size_t i = 0; i < count; ++i) {
     const std::array<T, N> value = value_of(i);
-    attribute->SetAttributeValue(::draco::AttributeValueIndex(static_cast<std::uint32_t>(i)), value.data());
+    attribute->SetAttributeValue(draco::AttributeValueIndex(static_cast<std::uint32_t>(i)), value.data());
   }
   return {static_cast<int>(attribute->unique_id()), N, value_type};
 }
@@ -47,28 +47,28 @@ template <class T> T to_unorm(float c) {
 }
 
 template <class T>
-detail::Attribute add_colors(::draco::PointCloud& pc, const Mesh& mesh, ::draco::DataType data_type,
+detail::Attribute add_colors(draco::PointCloud& pc, const Mesh& mesh, draco::DataType data_type,
                              detail::ValueType value_type) {
   return add_attribute<T, 4>(
-      pc, ::draco::GeometryAttribute::COLOR, data_type, value_type, mesh.colors.size(), [&](std::size_t i) {
+      pc, draco::GeometryAttribute::COLOR, data_type, value_type, mesh.colors.size(), [&](std::size_t i) {
         const Vec4f& c = mesh.colors[i];
         return std::array<T, 4>{to_unorm<T>(c[0]), to_unorm<T>(c[1]), to_unorm<T>(c[2]), to_unorm<T>(c[3])};
       });
 }
 
 // The mesh as Draco geometry (a draco::Mesh, with no faces for a point cloud); fills the attribute ids.
-std::unique_ptr<::draco::Mesh> to_draco(const Mesh& mesh, const WriteOptions& options, detail::Encoded& out) {
-  using Type = ::draco::GeometryAttribute::Type;
-  auto dm = std::make_unique<::draco::Mesh>();
+std::unique_ptr<draco::Mesh> to_draco(const Mesh& mesh, const WriteOptions& options, detail::Encoded& out) {
+  using Type = draco::GeometryAttribute::Type;
+  auto dm = std::make_unique<draco::Mesh>();
   const std::size_t n = mesh.vertex_count();
-  dm->set_num_points(static_cast<::draco::PointIndex::ValueType>(n));
-  out.position = add_attribute<float, 3>(*dm, Type::POSITION, ::draco::DT_FLOAT32, detail::ValueType::Float,
-                                         n, [&](std::size_t i) {
+  dm->set_num_points(static_cast<draco::PointIndex::ValueType>(n));
+  out.position = add_attribute<float, 3>(*dm, Type::POSITION, draco::DT_FLOAT32, detail::ValueType::Float, n,
+                                         [&](std::size_t i) {
                                            const Vec3f p = mesh.positions[i].cast<float>();
                                            return std::array<float, 3>{p.x(), p.y(), p.z()};
                                          });
   if (mesh.has_normals())
-    out.normal = add_attribute<float, 3>(*dm, Type::NORMAL, ::draco::DT_FLOAT32, detail::ValueType::Float, n,
+    out.normal = add_attribute<float, 3>(*dm, Type::NORMAL, draco::DT_FLOAT32, detail::ValueType::Float, n,
                                          [&](std::size_t i) {
                                            const Vec3f& v = mesh.normals[i];
                                            return std::array<float, 3>{v.x(), v.y(), v.z()};
@@ -76,31 +76,31 @@ std::unique_ptr<::draco::Mesh> to_draco(const Mesh& mesh, const WriteOptions& op
   if (mesh.has_colors())
     out.color =
         options.color_bits == 8
-            ? add_colors<std::uint8_t>(*dm, mesh, ::draco::DT_UINT8, detail::ValueType::UnsignedByte)
-            : add_colors<std::uint16_t>(*dm, mesh, ::draco::DT_UINT16, detail::ValueType::UnsignedShort);
+            ? add_colors<std::uint8_t>(*dm, mesh, draco::DT_UINT8, detail::ValueType::UnsignedByte)
+            : add_colors<std::uint16_t>(*dm, mesh, draco::DT_UINT16, detail::ValueType::UnsignedShort);
   if (mesh.has_texcoords())
-    out.texcoord = add_attribute<float, 2>(*dm, Type::TEX_COORD, ::draco::DT_FLOAT32,
-                                           detail::ValueType::Float, n, [&](std::size_t i) {
+    out.texcoord = add_attribute<float, 2>(*dm, Type::TEX_COORD, draco::DT_FLOAT32, detail::ValueType::Float,
+                                           n, [&](std::size_t i) {
                                              const Vec2f& t = mesh.texcoords[i];
                                              return std::array<float, 2>{t.x(), t.y()};
                                            });
   dm->SetNumFaces(mesh.triangle_count());
   for (std::size_t f = 0; f < mesh.triangle_count(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    dm->SetFace(::draco::FaceIndex(static_cast<std::uint32_t>(f)),
-                {::draco::PointIndex(t[0]), ::draco::PointIndex(t[1]), ::draco::PointIndex(t[2])});
+    dm->SetFace(draco::FaceIndex(static_cast<std::uint32_t>(f)),
+                {draco::PointIndex(t[0]), draco::PointIndex(t[1]), draco::PointIndex(t[2])});
   }
   if (mesh.units != Units::Unknown) {
-    auto metadata = std::make_unique<::draco::GeometryMetadata>();
+    auto metadata = std::make_unique<draco::GeometryMetadata>();
     metadata->AddEntryString("units", std::string(to_string(mesh.units)));
     dm->AddMetadata(std::move(metadata));
   }
   return dm;
 }
 
-::draco::Encoder make_encoder(const WriteOptions& options, bool mesh) {
-  using Type = ::draco::GeometryAttribute::Type;
-  ::draco::Encoder encoder;
+draco::Encoder make_encoder(const WriteOptions& options, bool mesh) {
+  using Type = draco::GeometryAttribute::Type;
+  draco::Encoder encoder;
   encoder.SetAttributeQuantization(Type::POSITION, options.position_bits);
   encoder.SetAttributeQuantization(Type::NORMAL, options.normal_bits);
   encoder.SetAttributeQuantization(Type::TEX_COORD, options.texcoord_bits);
@@ -109,8 +109,8 @@ std::unique_ptr<::draco::Mesh> to_draco(const Mesh& mesh, const WriteOptions& op
   // Speed 10 already picks the sequential methods; saying so keeps the vertex-order promise of level 0
   // independent of libdraco's heuristics (its edgebreaker and k-d tree reorder points).
   if (options.level == 0)
-    encoder.SetEncodingMethod(mesh ? int{::draco::MESH_SEQUENTIAL_ENCODING}
-                                   : int{::draco::POINT_CLOUD_SEQUENTIAL_ENCODING});
+    encoder.SetEncodingMethod(mesh ? int{draco::MESH_SEQUENTIAL_ENCODING}
+                                   : int{draco::POINT_CLOUD_SEQUENTIAL_ENCODING});
   return encoder;
 }
 
@@ -192,11 +192,11 @@ Result<Encoded> encode(const Mesh& mesh, const WriteOptions& options, Notes* not
 
   Encoded out;
   try {
-    const std::unique_ptr<::draco::Mesh> dm = to_draco(mesh, options, out);
-    ::draco::Encoder encoder = make_encoder(options, !mesh.is_point_cloud());
-    ::draco::EncoderBuffer buffer;
-    const ::draco::Status status = mesh.is_point_cloud() ? encoder.EncodePointCloudToBuffer(*dm, &buffer)
-                                                         : encoder.EncodeMeshToBuffer(*dm, &buffer);
+    const std::unique_ptr<draco::Mesh> dm = to_draco(mesh, options, out);
+    draco::Encoder encoder = make_encoder(options, !mesh.is_point_cloud());
+    draco::EncoderBuffer buffer;
+    const draco::Status status = mesh.is_point_cloud() ? encoder.EncodePointCloudToBuffer(*dm, &buffer)
+                                                       : encoder.EncodeMeshToBuffer(*dm, &buffer);
     if (!status.ok())
       return make_error(ErrorCode::Malformed,
                         "Draco cannot encode the mesh: " + detail::message_text(status.error_msg_string()),
@@ -229,4 +229,4 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
   return std::move(encoded->bytes);
 }
 
-} // namespace pdeface::draco
+} // namespace pdeface::drc

@@ -60,10 +60,10 @@ Result<tinygltf::Model> load(const Container& c, std::string_view source, Notes*
     err = e.what();
   }
   if (!ok)
-    return make_error(ErrorCode::Malformed, "tinygltf: " + draco::detail::message_text(err),
+    return make_error(ErrorCode::Malformed, "tinygltf: " + drc::detail::message_text(err),
                       std::string(source));
   if (!warn.empty() && notes)
-    notes->push_back(fmt::format("{}: tinygltf: {}", source, draco::detail::message_text(warn)));
+    notes->push_back(fmt::format("{}: tinygltf: {}", source, drc::detail::message_text(warn)));
   return model;
 }
 

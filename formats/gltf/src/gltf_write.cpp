@@ -206,11 +206,11 @@ tinygltf::Primitive plain_primitive(ModelBuilder& b, const Mesh& mesh) {
   return p;
 }
 
-int component_type(draco::detail::ValueType type) {
+int component_type(drc::detail::ValueType type) {
   switch (type) {
-  case draco::detail::ValueType::UnsignedByte: return TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  case draco::detail::ValueType::UnsignedShort: return TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-  case draco::detail::ValueType::Float: return TINYGLTF_COMPONENT_TYPE_FLOAT;
+  case drc::detail::ValueType::UnsignedByte: return TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+  case drc::detail::ValueType::UnsignedShort: return TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  case drc::detail::ValueType::Float: return TINYGLTF_COMPONENT_TYPE_FLOAT;
   }
   return TINYGLTF_COMPONENT_TYPE_FLOAT;
 }
@@ -219,11 +219,11 @@ int component_type(draco::detail::ValueType type) {
 // view that describe the decoded data. Draco reorders and may add or drop vertices, so counts and
 // POSITION bounds come from decoding the stream, as the extension's implementation note advises.
 Result<tinygltf::Primitive> draco_primitive(ModelBuilder& b, const Mesh& mesh,
-                                            const draco::WriteOptions& options, Notes* notes) {
-  Result<draco::detail::Encoded> encoded = draco::detail::encode(mesh, options, notes);
+                                            const drc::WriteOptions& options, Notes* notes) {
+  Result<drc::detail::Encoded> encoded = drc::detail::encode(mesh, options, notes);
   if (!encoded) return std::move(encoded).error();
-  Result<draco::detail::Decoded> decoded =
-      draco::detail::decode(encoded->bytes, mesh.name, std::nullopt, nullptr);
+  Result<drc::detail::Decoded> decoded =
+      drc::detail::decode(encoded->bytes, mesh.name, std::nullopt, nullptr);
   if (!decoded) return std::move(decoded).error();
   const Mesh& out = decoded->mesh;
   const std::size_t n = out.vertex_count();
@@ -231,10 +231,10 @@ Result<tinygltf::Primitive> draco_primitive(ModelBuilder& b, const Mesh& mesh,
   tinygltf::Primitive p;
   p.mode = TINYGLTF_MODE_TRIANGLES;
   tinygltf::Value::Object ids;
-  auto attribute = [&](const char* name, const draco::detail::Attribute& a, int type) {
+  auto attribute = [&](const char* name, const drc::detail::Attribute& a, int type) {
     if (!a.present()) return;
     p.attributes[name] =
-        b.add_accessor(kNoView, component_type(a.type), type, n, a.type != draco::detail::ValueType::Float);
+        b.add_accessor(kNoView, component_type(a.type), type, n, a.type != drc::detail::ValueType::Float);
     ids[name] = tinygltf::Value(a.unique_id);
   };
   p.attributes["POSITION"] = b.add_positions(kNoView, flat_positions(out.positions));
@@ -258,7 +258,7 @@ Result<tinygltf::Primitive> draco_primitive(ModelBuilder& b, const Mesh& mesh,
 
 Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
   if (options.draco)
-    if (Result<void> ok = draco::check(*options.draco); !ok) return std::move(ok).error();
+    if (Result<void> ok = drc::check(*options.draco); !ok) return std::move(ok).error();
   if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
 
   Mesh out = mesh;

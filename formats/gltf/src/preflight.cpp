@@ -279,7 +279,7 @@ private:
     const std::uint64_t offset = member(&v, "byteOffset") ? *unsigned_of(member(&v, "byteOffset")) : 0;
     const std::string_view bytes = data->bytes().substr(offset, *unsigned_of(member(&v, "byteLength")));
     const std::optional<std::uint64_t> base = data->base ? std::optional(*data->base + offset) : std::nullopt;
-    Result<draco::detail::Decoded> decoded = draco::detail::decode(bytes, source_, base, nullptr);
+    Result<drc::detail::Decoded> decoded = drc::detail::decode(bytes, source_, base, nullptr);
     if (!decoded) {
       Error e = std::move(decoded).error();
       e.message = fmt::format("{} ({}): {}", where, kDracoExtension, e.message);
@@ -295,7 +295,7 @@ private:
           fmt::format("{} points do not fit its indices' component type", decoded->mesh.vertex_count()));
     for (const auto& [name, id] : ids->items()) {
       const auto found =
-          std::ranges::find(decoded->attributes, id.get<int>(), &draco::detail::Attribute::unique_id);
+          std::ranges::find(decoded->attributes, id.get<int>(), &drc::detail::Attribute::unique_id);
       if (found == decoded->attributes.end())
         return malformed(
             fmt::format("the Draco data has no attribute {} (for {})", id.get<int>(), excerpt(name)));

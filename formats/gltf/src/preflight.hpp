@@ -8,7 +8,7 @@
 // - every `KHR_draco_mesh_compression` primitive. tinygltf decodes these while parsing, trusting indices
 //   from the file (buffer view, accessors, Draco attribute ids) and the decoded data: a bad index reads out
 //   of bounds, a missing attribute id dereferences null, an attribute of more than 4 components overflows
-//   a 4-element array on the stack. So the Draco data is decoded first through pdeface::draco's checked
+//   a 4-element array on the stack. So the Draco data is decoded first through pdeface::drc's checked
 //   decoder and compared with what the primitive claims; only then may tinygltf decode it (again).
 
 #include "container.hpp"

@@ -1,6 +1,6 @@
 #include "pdeface/ply/ply.hpp"
 
-#include "openmesh_io.hpp"
+#include "pdeface/openmesh_io/openmesh_io.hpp"
 #include "ply_layout.hpp"
 
 #include <fmt/format.h>
@@ -15,7 +15,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   Result<detail::DataRanges> data = detail::check_data(*header, bytes, source, notes);
   if (!data) return std::move(data).error();
   Result<Mesh> mesh =
-      detail::read_openmesh(detail::openmesh_input(*header, *data), {.extension = "ply"}, source, notes);
+      openmesh_io::read_openmesh(detail::openmesh_input(*header, *data), {.extension = "ply"}, source, notes);
   if (mesh) mesh->units = header->units;
   return mesh;
 }
@@ -23,14 +23,14 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
 Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
   if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   const bool alpha = std::ranges::any_of(mesh.colors, [](const Vec4f& c) { return c[3] < 1.0f; });
-  Result<std::string> bytes = detail::write_openmesh(mesh,
-                                                     {.extension = "ply",
-                                                      .binary = options.binary,
-                                                      .normals = mesh.has_normals(),
-                                                      .colors = mesh.has_colors(),
-                                                      .alpha = alpha,
-                                                      .texcoords = mesh.has_texcoords()},
-                                                     "PLY", notes);
+  Result<std::string> bytes = openmesh_io::write_openmesh(mesh,
+                                                          {.extension = "ply",
+                                                           .binary = options.binary,
+                                                           .normals = mesh.has_normals(),
+                                                           .colors = mesh.has_colors(),
+                                                           .alpha = alpha,
+                                                           .texcoords = mesh.has_texcoords()},
+                                                          "PLY", notes);
   if (!bytes || mesh.units == Units::Unknown) return bytes;
   // OpenMesh writes no comments: state the units after the format line, where our reader looks for them.
   const std::size_t format_end = bytes->find('\n', bytes->find("\nformat ") + 1);

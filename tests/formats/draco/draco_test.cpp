@@ -82,10 +82,10 @@ std::string header(int major, int minor, int type, int method, std::uint16_t fla
 // ---- real scan -----------------------------------------------------------------------------------------
 
 TEST(DracoRead, RealScanWithinQuantisationStepOfItsPly) {
-  PDEFACE_FACE_OR_SKIP(drc, "facefuns_m46.drc");
-  PDEFACE_FACE_OR_SKIP(ply, "facefuns_m46.ply");
+  PDEFACE_FACE_OR_SKIP(drc_path, "facefuns_m46.drc");
+  PDEFACE_FACE_OR_SKIP(ply_path, "facefuns_m46.ply");
   Notes notes;
-  Result<Mesh> mesh = draco::read(*read_file(drc), "facefuns_m46.drc", &notes);
+  Result<Mesh> mesh = drc::read(*read_file(drc_path), "facefuns_m46.drc", &notes);
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->vertex_count(), 30204u);
   EXPECT_EQ(mesh->triangle_count(), 59697u);
@@ -93,7 +93,7 @@ TEST(DracoRead, RealScanWithinQuantisationStepOfItsPly) {
   EXPECT_EQ(mesh->units, Units::Unknown); // draco_encoder writes no units
   EXPECT_TRUE(notes.empty());
 
-  const std::vector<Vec3> original = read_ply_positions(ply);
+  const std::vector<Vec3> original = read_ply_positions(ply_path);
   ASSERT_EQ(original.size(), mesh->vertex_count());
   Mesh reference;
   reference.positions = original;
@@ -113,11 +113,11 @@ TEST(DracoRoundTrip, SampleFaceAtSeveralBitDepthsKeepsOrderAtLevel0) {
   for (int bits : {8, 11, 14, 18, 24}) {
     SCOPED_TRACE(bits);
     Notes notes;
-    Result<std::string> bytes = draco::write(face, {.position_bits = bits, .level = 0}, &notes);
+    Result<std::string> bytes = drc::write(face, {.position_bits = bits, .level = 0}, &notes);
     ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
     ASSERT_EQ(notes.size(), 1u);
     EXPECT_NE(notes[0].find(std::to_string(bits) + " bits"), std::string::npos) << notes[0];
-    Result<Mesh> back = draco::read(*bytes, "face.drc");
+    Result<Mesh> back = drc::read(*bytes, "face.drc");
     ASSERT_TRUE(back.ok()) << back.error().to_string();
     ASSERT_EQ(back->vertex_count(), face.vertex_count());
     EXPECT_EQ(back->triangles, face.triangles); // level 0: same vertex order, same triangles
@@ -136,15 +136,15 @@ TEST(DracoRoundTrip, SampleFaceAtSeveralBitDepthsKeepsOrderAtLevel0) {
 
 TEST(DracoRoundTrip, Level7ReordersVerticesButKeepsTheShape) {
   const Mesh face = sample_face();
-  Result<std::string> bytes = draco::write(face, {.level = 7});
+  Result<std::string> bytes = drc::write(face, {.level = 7});
   ASSERT_TRUE(bytes.ok());
-  Result<Mesh> back = draco::read(*bytes, "face.drc");
+  Result<Mesh> back = drc::read(*bytes, "face.drc");
   ASSERT_TRUE(back.ok()) << back.error().to_string();
   ASSERT_EQ(back->vertex_count(), face.vertex_count());
   EXPECT_EQ(back->triangle_count(), face.triangle_count());
   EXPECT_NE(back->triangles, face.triangles);
   EXPECT_LE(sorted_axis_error(back->positions, face.positions), half_step(face, 14));
-  EXPECT_LT(bytes->size(), draco::write(face, {.level = 0})->size() / 4);
+  EXPECT_LT(bytes->size(), drc::write(face, {.level = 0})->size() / 4);
 }
 
 TEST(DracoRoundTrip, PointCloudAtLevels0And7) {
@@ -153,10 +153,10 @@ TEST(DracoRoundTrip, PointCloudAtLevels0And7) {
   cloud.units = Units::Metres;
   for (int level : {0, 7}) {
     SCOPED_TRACE(level);
-    Result<std::string> bytes = draco::write(cloud, {.level = level});
+    Result<std::string> bytes = drc::write(cloud, {.level = level});
     ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
     EXPECT_EQ((*bytes)[7], 0) << "a point cloud, not a mesh";
-    Result<Mesh> back = draco::read(*bytes, "cloud.drc");
+    Result<Mesh> back = drc::read(*bytes, "cloud.drc");
     ASSERT_TRUE(back.ok()) << back.error().to_string();
     EXPECT_TRUE(back->is_point_cloud());
     ASSERT_EQ(back->vertex_count(), cloud.vertex_count());
@@ -175,9 +175,9 @@ TEST(DracoRoundTrip, TexcoordsAnd16BitColours) {
     face.texcoords.emplace_back(static_cast<float>(i % 17) / 16, static_cast<float>(i % 5) / 4);
     face.colors[i].w() = static_cast<float>(i % 3) / 2;
   }
-  Result<std::string> bytes = draco::write(face, {.color_bits = 16, .texcoord_bits = 12, .level = 0});
+  Result<std::string> bytes = drc::write(face, {.color_bits = 16, .texcoord_bits = 12, .level = 0});
   ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
-  Result<Mesh> back = draco::read(*bytes, "face.drc");
+  Result<Mesh> back = drc::read(*bytes, "face.drc");
   ASSERT_TRUE(back.ok()) << back.error().to_string();
   ASSERT_TRUE(back->has_texcoords());
   for (std::size_t i = 0; i < face.vertex_count(); ++i) {
@@ -192,35 +192,34 @@ TEST(DracoWrite, NotesVerticesOnNoTriangleThatEdgebreakerDrops) {
   face.normals.emplace_back(0, 0, 1);
   face.colors.emplace_back(1, 1, 1, 1);
   Notes notes;
-  Result<Mesh> back = draco::read(*draco::write(face, {.level = 7}, &notes), "face.drc");
+  Result<Mesh> back = drc::read(*drc::write(face, {.level = 7}, &notes), "face.drc");
   ASSERT_TRUE(back.ok());
   EXPECT_EQ(back->vertex_count(), face.vertex_count() - 1);
   ASSERT_EQ(notes.size(), 2u);
   EXPECT_NE(notes[1].find("1 vertex on no triangle"), std::string::npos) << notes[1];
-  back = draco::read(*draco::write(face, {.level = 0}), "face.drc");
+  back = drc::read(*drc::write(face, {.level = 0}), "face.drc");
   EXPECT_EQ(back->vertex_count(), face.vertex_count());
 }
 
 TEST(DracoWrite, RefusesEmptyAndInvalidMeshes) {
-  Result<std::string> empty = draco::write(Mesh{});
+  Result<std::string> empty = drc::write(Mesh{});
   ASSERT_FALSE(empty.ok());
   EXPECT_EQ(empty.error().code, ErrorCode::Empty);
   Mesh bad = small_face();
   bad.triangles[3][1] = 100000;
-  Result<std::string> out = draco::write(bad);
+  Result<std::string> out = drc::write(bad);
   ASSERT_FALSE(out.ok());
   EXPECT_EQ(out.error().code, ErrorCode::IndexOutOfRange);
 }
 
 TEST(DracoWrite, CheckRefusesOptionsOutOfRange) {
-  EXPECT_TRUE(draco::check({}).ok());
-  EXPECT_TRUE(draco::check({.position_bits = 1, .normal_bits = 2, .texcoord_bits = 1, .level = 0}).ok());
+  EXPECT_TRUE(drc::check({}).ok());
+  EXPECT_TRUE(drc::check({.position_bits = 1, .normal_bits = 2, .texcoord_bits = 1, .level = 0}).ok());
   EXPECT_TRUE(
-      draco::check(
-          {.position_bits = 24, .normal_bits = 24, .color_bits = 16, .texcoord_bits = 24, .level = 10})
+      drc::check({.position_bits = 24, .normal_bits = 24, .color_bits = 16, .texcoord_bits = 24, .level = 10})
           .ok());
   struct Case {
-    draco::WriteOptions options;
+    drc::WriteOptions options;
     std::string_view message;
   };
   for (const Case& c : {Case{{.position_bits = 0}, "position_bits = 0 is outside 1..24"},
@@ -231,11 +230,11 @@ TEST(DracoWrite, CheckRefusesOptionsOutOfRange) {
                         Case{{.texcoord_bits = 31}, "texcoord_bits = 31 is outside 1..24"},
                         Case{{.level = -1}, "level = -1 is outside 0..10"},
                         Case{{.level = 11}, "level = 11 is outside 0..10"}}) {
-    const Result<void> result = draco::check(c.options);
+    const Result<void> result = drc::check(c.options);
     ASSERT_FALSE(result.ok()) << c.message;
     EXPECT_EQ(result.error().code, ErrorCode::InvalidArgument);
     EXPECT_EQ(result.error().message.substr(0, c.message.size()), c.message);
-    Result<std::string> written = draco::write(small_face(), c.options);
+    Result<std::string> written = drc::write(small_face(), c.options);
     ASSERT_FALSE(written.ok());
     EXPECT_EQ(written.error().code, ErrorCode::InvalidArgument);
   }
@@ -244,45 +243,44 @@ TEST(DracoWrite, CheckRefusesOptionsOutOfRange) {
 // ---- bad input -----------------------------------------------------------------------------------------
 
 TEST(DracoBadInput, EmptyWrongMagicAndShortHeader) {
-  expect_error(draco::read("", "bad.drc"), ErrorCode::Empty, 0);
-  expect_error(draco::read("PLY\nformat", "bad.drc"), ErrorCode::BadMagic, 0);
-  expect_error(draco::read("DRACX\x02\x02", "bad.drc"), ErrorCode::BadMagic, 0);
-  expect_error(draco::read("DRA", "bad.drc"), ErrorCode::Truncated, 3);
-  expect_error(draco::read(header(2, 2, 1, 1).substr(0, 9), "bad.drc"), ErrorCode::Truncated, 9);
+  expect_error(drc::read("", "bad.drc"), ErrorCode::Empty, 0);
+  expect_error(drc::read("PLY\nformat", "bad.drc"), ErrorCode::BadMagic, 0);
+  expect_error(drc::read("DRACX\x02\x02", "bad.drc"), ErrorCode::BadMagic, 0);
+  expect_error(drc::read("DRA", "bad.drc"), ErrorCode::Truncated, 3);
+  expect_error(drc::read(header(2, 2, 1, 1).substr(0, 9), "bad.drc"), ErrorCode::Truncated, 9);
 }
 
 TEST(DracoBadInput, VersionsGeometryTypesAndMethods) {
-  expect_error(draco::read(header(3, 0, 1, 1) + "\x00\x00", "bad.drc"), ErrorCode::UnsupportedVersion, 5);
-  expect_error(draco::read(header(2, 1, 1, 1) + "\x00\x00", "bad.drc"), ErrorCode::UnsupportedVersion, 5);
-  expect_error(draco::read(header(2, 2, 0, 0) + "\x00\x00", "bad.drc"), ErrorCode::UnsupportedVersion, 5);
-  expect_error(draco::read(header(2, 2, 2, 0) + "\x00\x00", "bad.drc"), ErrorCode::Malformed, 7);
-  expect_error(draco::read(header(2, 2, 1, 2) + "\x00\x00", "bad.drc"), ErrorCode::Malformed, 8);
-  Result<Mesh> version = draco::read(header(1, 3, 1, 1), "bad.drc");
+  expect_error(drc::read(header(3, 0, 1, 1) + "\x00\x00", "bad.drc"), ErrorCode::UnsupportedVersion, 5);
+  expect_error(drc::read(header(2, 1, 1, 1) + "\x00\x00", "bad.drc"), ErrorCode::UnsupportedVersion, 5);
+  expect_error(drc::read(header(2, 2, 0, 0) + "\x00\x00", "bad.drc"), ErrorCode::UnsupportedVersion, 5);
+  expect_error(drc::read(header(2, 2, 2, 0) + "\x00\x00", "bad.drc"), ErrorCode::Malformed, 7);
+  expect_error(drc::read(header(2, 2, 1, 2) + "\x00\x00", "bad.drc"), ErrorCode::Malformed, 8);
+  Result<Mesh> version = drc::read(header(1, 3, 1, 1), "bad.drc");
   EXPECT_NE(version.error().message.find("bitstream 1.3"), std::string::npos) << version.error().message;
 }
 
 TEST(DracoBadInput, HugeCountsFailBeforeLibdracoAllocates) {
   const std::string padding(100, '\x55');
   // Sequential mesh: 2^31 faces (at byte 11), then 2^31 points (at byte 12 after a 1-byte face count).
-  expect_error(draco::read(header(2, 2, 1, 0) + varint(1u << 31) + varint(3) + padding, "bad.drc"),
+  expect_error(drc::read(header(2, 2, 1, 0) + varint(1u << 31) + varint(3) + padding, "bad.drc"),
                ErrorCode::CountTooLarge, 11);
-  expect_error(draco::read(header(2, 2, 1, 0) + varint(3) + varint(1u << 31) + padding, "bad.drc"),
+  expect_error(drc::read(header(2, 2, 1, 0) + varint(3) + varint(1u << 31) + padding, "bad.drc"),
                ErrorCode::CountTooLarge, 12);
   // Edgebreaker: traversal type at 11, vertices at 12, faces after them.
-  expect_error(draco::read(header(2, 2, 1, 1) + '\x02' + varint(1u << 31) + padding, "bad.drc"),
+  expect_error(drc::read(header(2, 2, 1, 1) + '\x02' + varint(1u << 31) + padding, "bad.drc"),
                ErrorCode::CountTooLarge, 12);
-  expect_error(
-      draco::read(header(2, 2, 1, 1) + '\x02' + varint(9) + varint(100'000'000) + padding, "bad.drc"),
-      ErrorCode::CountTooLarge, 13);
+  expect_error(drc::read(header(2, 2, 1, 1) + '\x02' + varint(9) + varint(100'000'000) + padding, "bad.drc"),
+               ErrorCode::CountTooLarge, 13);
   // Split symbols add vertices: 9 + 2^30 of them.
-  expect_error(draco::read(header(2, 2, 1, 1) + '\x02' + varint(9) + varint(8) + '\x00' + varint(8) +
-                               varint(1u << 30) + padding,
-                           "bad.drc"),
+  expect_error(drc::read(header(2, 2, 1, 1) + '\x02' + varint(9) + varint(8) + '\x00' + varint(8) +
+                             varint(1u << 30) + padding,
+                         "bad.drc"),
                ErrorCode::CountTooLarge, 16);
   // Point clouds (sequential and k-d tree): an int32 count at byte 11.
   for (int method : {0, 1}) {
     const std::string count("\x00\x00\x00\x80", 4);
-    Result<Mesh> result = draco::read(header(2, 3, 0, method) + count + padding, "bad.drc");
+    Result<Mesh> result = drc::read(header(2, 3, 0, method) + count + padding, "bad.drc");
     expect_error(result, ErrorCode::CountTooLarge, 11);
     EXPECT_NE(result.error().message.find("2147483648 points"), std::string::npos) << result.error().message;
   }
@@ -293,7 +291,7 @@ TEST(DracoBadInput, HostileMetadata) {
   const std::string tail = varint(8) + varint(9) + std::string(100, '\0');
   // 4 GB claimed for one value (after 0 attributes, 1 entry, name "u"): the data ends first.
   const std::string huge_value = mesh + varint(0) + varint(1) + "\x01u" + varint(0xffffffff) + tail;
-  expect_error(draco::read(huge_value, "bad.drc"), ErrorCode::Truncated, huge_value.size());
+  expect_error(drc::read(huge_value, "bad.drc"), ErrorCode::Truncated, huge_value.size());
   // 2^31 attribute metadata nodes (libdraco would loop over them 2^31 times, even past the end) or entries:
   // valid ones follow until the data ends.
   std::string attributes = mesh + varint(1u << 31), entries = mesh + varint(0) + varint(1u << 31);
@@ -301,36 +299,36 @@ TEST(DracoBadInput, HostileMetadata) {
     attributes += std::string("\x00\x00\x00", 3); // id 0, no entries, no children
     entries += std::string("\x00\x01\x00", 3);    // no name, a 1-byte value
   }
-  expect_error(draco::read(attributes, "bad.drc"), ErrorCode::Truncated, attributes.size());
-  expect_error(draco::read(entries, "bad.drc"), ErrorCode::Truncated, entries.size());
+  expect_error(drc::read(attributes, "bad.drc"), ErrorCode::Truncated, attributes.size());
+  expect_error(drc::read(entries, "bad.drc"), ErrorCode::Truncated, entries.size());
   // A value of 0 bytes (libdraco refuses it too), size at byte 15.
-  expect_error(draco::read(mesh + varint(0) + varint(1) + "\x01u" + varint(0) + tail, "bad.drc"),
+  expect_error(drc::read(mesh + varint(0) + varint(1) + "\x01u" + varint(0) + tail, "bad.drc"),
                ErrorCode::Malformed, 15);
   // Children nested 40 deep: each is (name "", 0 entries, 1 child); libdraco would recurse without limit.
   std::string nested = varint(0) + varint(0) + varint(1);
   for (int i = 0; i < 40; ++i)
     nested += std::string("\x00", 1) + varint(0) + varint(1);
-  Result<Mesh> deep = draco::read(mesh + nested + tail, "bad.drc");
+  Result<Mesh> deep = drc::read(mesh + nested + tail, "bad.drc");
   ASSERT_FALSE(deep.ok());
   EXPECT_EQ(deep.error().code, ErrorCode::Malformed);
   EXPECT_NE(deep.error().message.find("nested deeper than 32"), std::string::npos);
   // A varint of more than 5 bytes.
-  expect_error(draco::read(mesh + std::string(6, '\x80') + tail, "bad.drc"), ErrorCode::Malformed, 11);
+  expect_error(drc::read(mesh + std::string(6, '\x80') + tail, "bad.drc"), ErrorCode::Malformed, 11);
 }
 
 TEST(DracoBadInput, HandMadeFixtures) {
-  Result<Mesh> square = draco::read(fixture("square.drc"), "square.drc");
+  Result<Mesh> square = drc::read(fixture("square.drc"), "square.drc");
   ASSERT_TRUE(square.ok()) << square.error().to_string();
   EXPECT_EQ(square->vertex_count(), 9u);
   EXPECT_EQ(square->triangle_count(), 8u);
 
   Notes notes;
-  Result<Mesh> generic = draco::read(fixture("square_generic16.drc"), "generic.drc", &notes);
+  Result<Mesh> generic = drc::read(fixture("square_generic16.drc"), "generic.drc", &notes);
   ASSERT_TRUE(generic.ok()) << generic.error().to_string();
   ASSERT_EQ(notes.size(), 1u);
   EXPECT_EQ(notes[0], "generic.drc: Draco attribute 1 (generic) dropped");
 
-  Result<Mesh> nan = draco::read(fixture("nan_position.drc"), "bad.drc");
+  Result<Mesh> nan = drc::read(fixture("nan_position.drc"), "bad.drc");
   expect_error(nan, ErrorCode::NonFinite, std::nullopt);
   EXPECT_NE(nan.error().message.find("point 4"), std::string::npos) << nan.error().message;
 
@@ -338,7 +336,7 @@ TEST(DracoBadInput, HandMadeFixtures) {
   // 9 points. libdraco checks this itself; either way it must be refused.
   std::string out_of_range = fixture("square.drc");
   out_of_range[16] = 0x20;
-  const Result<Mesh> index = draco::read(out_of_range, "bad.drc");
+  const Result<Mesh> index = drc::read(out_of_range, "bad.drc");
   ASSERT_FALSE(index.ok());
   EXPECT_TRUE(index.error().code == ErrorCode::Malformed || index.error().code == ErrorCode::IndexOutOfRange)
       << index.error().to_string();
@@ -351,7 +349,7 @@ TEST(DracoBadInput, GarbageAfterAValidHeader) {
     std::string bytes = h;
     for (int i = 0; i < 200; ++i)
       bytes += static_cast<char>(random() % 7); // small values: plausible counts
-    const Result<Mesh> result = draco::read(bytes, "bad.drc");
+    const Result<Mesh> result = drc::read(bytes, "bad.drc");
     ASSERT_FALSE(result.ok());
     EXPECT_EQ(result.error().source, "bad.drc");
     EXPECT_TRUE(result.error().where.byte.has_value()) << result.error().to_string();
@@ -367,9 +365,9 @@ TEST(DracoBadInput, EveryTruncationLengthFailsCleanly) {
   cloud.triangles.clear();
   for (const Mesh* mesh : {&face, &cloud})
     for (int level : {0, 7}) {
-      const std::string bytes = *draco::write(*mesh, {.level = level});
+      const std::string bytes = *drc::write(*mesh, {.level = level});
       for (std::size_t n = 0; n < bytes.size(); ++n) {
-        const Result<Mesh> result = draco::read(std::string_view(bytes).substr(0, n), "bad.drc");
+        const Result<Mesh> result = drc::read(std::string_view(bytes).substr(0, n), "bad.drc");
         if (result.ok()) {
           EXPECT_TRUE(validate(*result).ok());
           continue;
@@ -390,12 +388,12 @@ TEST(DracoBadInput, RandomMutationsFailCleanly) {
   std::mt19937 random(42);
   for (const Mesh* mesh : {&face, &cloud})
     for (int level : {0, 7}) {
-      const std::string original = *draco::write(*mesh, {.level = level});
+      const std::string original = *drc::write(*mesh, {.level = level});
       for (int trial = 0; trial < 300; ++trial) {
         std::string bytes = original;
         for (int k = 0; k < 1 + trial % 4; ++k)
           bytes[random() % bytes.size()] = static_cast<char>(random());
-        const Result<Mesh> result = draco::read(bytes, "bad.drc");
+        const Result<Mesh> result = drc::read(bytes, "bad.drc");
         if (result.ok()) {
           EXPECT_TRUE(validate(*result).ok());
         }

@@ -327,7 +327,7 @@ TEST(GltfRoundTrip, DracoWithinHalfAQuantisationStep) {
   for (bool binary : {true, false}) {
     SCOPED_TRACE(binary);
     Notes notes;
-    Result<std::string> bytes = gltf::write(face, {.binary = binary, .draco = draco::WriteOptions{}}, &notes);
+    Result<std::string> bytes = gltf::write(face, {.binary = binary, .draco = drc::WriteOptions{}}, &notes);
     ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
     EXPECT_TRUE(has_note(notes, "quantises positions to 14 bits"));
     Result<Mesh> back = gltf::read(*bytes, binary ? "face.glb" : "face.gltf");
@@ -342,7 +342,7 @@ TEST(GltfRoundTrip, DracoWithinHalfAQuantisationStep) {
   }
   // Level 0 keeps the order, so vertices compare one by one.
   Result<Mesh> ordered = gltf::read(
-      *gltf::write(face, {.draco = draco::WriteOptions{.position_bits = 11, .level = 0}}), "face.glb");
+      *gltf::write(face, {.draco = drc::WriteOptions{.position_bits = 11, .level = 0}}), "face.glb");
   ASSERT_TRUE(ordered.ok()) << ordered.error().to_string();
   const double tolerance = half_step(face, 11);
   for (std::size_t i = 0; i < face.vertex_count(); ++i) {
@@ -357,7 +357,7 @@ TEST(GltfRoundTrip, PointCloudsAsPoints) {
   cloud.triangles.clear();
   cloud.normals.clear();
   Notes notes;
-  Result<std::string> bytes = gltf::write(cloud, {.draco = draco::WriteOptions{}}, &notes);
+  Result<std::string> bytes = gltf::write(cloud, {.draco = drc::WriteOptions{}}, &notes);
   ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
   EXPECT_TRUE(has_note(notes, "point cloud is written uncompressed"));
   EXPECT_EQ(split_glb(*bytes).first["meshes"][0]["primitives"][0]["mode"], 0);
@@ -387,7 +387,7 @@ TEST(GltfWrite, NormalsAreComputedAndUnit) {
 TEST(GltfWrite, DracoJsonIsWhatTheExtensionAsks) {
   Mesh face = small_face();
   face.texcoords.assign(face.vertex_count(), Vec2f(0.5f, 0.5f));
-  const auto [doc, bin] = split_glb(*gltf::write(face, {.draco = draco::WriteOptions{.color_bits = 16}}));
+  const auto [doc, bin] = split_glb(*gltf::write(face, {.draco = drc::WriteOptions{.color_bits = 16}}));
   EXPECT_EQ(doc["extensionsUsed"], json::array({"KHR_draco_mesh_compression"}));
   EXPECT_EQ(doc["extensionsRequired"], json::array({"KHR_draco_mesh_compression"}));
   EXPECT_TRUE(doc["asset"]["generator"].get<std::string>().starts_with("pdeface "));
@@ -414,7 +414,7 @@ TEST(GltfWrite, DracoJsonIsWhatTheExtensionAsks) {
 }
 
 TEST(GltfWrite, RefusesBadOptionsAndMeshes) {
-  Result<std::string> bits = gltf::write(small_face(), {.draco = draco::WriteOptions{.position_bits = 30}});
+  Result<std::string> bits = gltf::write(small_face(), {.draco = drc::WriteOptions{.position_bits = 30}});
   ASSERT_FALSE(bits.ok());
   EXPECT_EQ(bits.error().code, ErrorCode::InvalidArgument);
   EXPECT_EQ(gltf::write(Mesh{}).error().code, ErrorCode::Empty);
@@ -619,7 +619,7 @@ TEST(GltfBadInput, InstancingIsBounded) {
 // KHR_draco_mesh_compression primitives that would crash or mislead tinygltf's unchecked decoding.
 TEST(GltfBadInput, HostileDracoPrimitives) {
   // Not a structured binding: clang 14 (the sanitizer build) cannot capture one in a lambda.
-  const auto split = split_glb(*gltf::write(small_face(), {.draco = draco::WriteOptions{}}));
+  const auto split = split_glb(*gltf::write(small_face(), {.draco = drc::WriteOptions{}}));
   const json& good = split.first;
   const std::string& bin = split.second;
   auto read = [&](const json& doc, std::string data) {
@@ -654,7 +654,7 @@ TEST(GltfBadInput, HostileDracoPrimitives) {
   // A Draco point cloud where a mesh is due.
   Mesh cloud = small_face();
   cloud.triangles.clear();
-  const std::string points = *draco::write(cloud);
+  const std::string points = *drc::write(cloud);
   json doc = with("/buffers/0/byteLength", points.size());
   doc["bufferViews"][0]["byteLength"] = points.size();
   expect_message(read(doc, points), "holds no triangles");
@@ -693,7 +693,7 @@ TEST(GltfBadInput, HostileDracoPrimitives) {
 TEST(GltfBadInput, EveryTruncationLengthFailsCleanly) {
   Mesh face = small_face();
   face.units = Units::Millimetres;
-  std::vector<std::string> files = {*gltf::write(face), *gltf::write(face, {.draco = draco::WriteOptions{}}),
+  std::vector<std::string> files = {*gltf::write(face), *gltf::write(face, {.draco = drc::WriteOptions{}}),
                                     fixture("square.gltf")};
   for (const std::string& bytes : files)
     for (std::size_t n = 0; n < bytes.size(); ++n) {
@@ -711,7 +711,7 @@ TEST(GltfBadInput, EveryTruncationLengthFailsCleanly) {
 TEST(GltfBadInput, RandomMutationsFailCleanly) {
   Mesh face = small_face();
   const std::vector<std::string> files = {*gltf::write(face),
-                                          *gltf::write(face, {.draco = draco::WriteOptions{}}),
+                                          *gltf::write(face, {.draco = drc::WriteOptions{}}),
                                           fixture("square.gltf"), fixture("square.glb")};
   std::mt19937 random(11);
   for (const std::string& original : files)

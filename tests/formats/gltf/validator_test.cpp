@@ -32,14 +32,14 @@ TEST(GltfValidator, WrittenFilesHaveNoErrors) {
   plain.positions.emplace_back(0, 0, 200); // a vertex on no triangle: its normal must still be a unit vector
   Mesh cloud = face;
   cloud.triangles.clear();
-  const draco::WriteOptions draco{};
+  const drc::WriteOptions draco{};
   const std::vector<std::pair<std::string, Result<std::string>>> files = {
       {"face.glb", gltf::write(face)},
       {"plain.glb", gltf::write(plain)},
       {"byte_colors.glb", gltf::write(bytes_colors)},
       {"cloud.glb", gltf::write(cloud)},
       {"face_draco.glb", gltf::write(face, {.draco = draco})},
-      {"colors16_draco.glb", gltf::write(bytes_colors, {.draco = draco::WriteOptions{.color_bits = 16}})},
+      {"colors16_draco.glb", gltf::write(bytes_colors, {.draco = drc::WriteOptions{.color_bits = 16}})},
       {"face.gltf", gltf::write(face, {.binary = false, .draco = std::nullopt})},
       {"face_draco.gltf", gltf::write(face, {.binary = false, .draco = draco})},
   };

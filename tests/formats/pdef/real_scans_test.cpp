@@ -118,7 +118,7 @@ TEST(PdefReconstruction, LosslessFileDecodesToTheReconstructionsMesh) {
 // The size table of docs/pdef-format.md (run on purpose: --gtest_also_run_disabled_tests
 // --gtest_filter='*Table*'): bytes of the .pdef of every ratio and maximum error, mean and largest over the
 // scans given by PDEF_TABLE_SCANS (default: the six facefuns scans and the eight ICT faces), and Draco's
-// sizes of the same scans (pdeface::draco at 11 and 14 bits, level 7).
+// sizes of the same scans (pdeface::drc at 11 and 14 bits, level 7).
 TEST(PdefSizes, DISABLED_Table) {
   std::vector<std::string> names;
   if (const char* env = std::getenv("PDEF_TABLE_SCANS")) {
@@ -144,9 +144,9 @@ TEST(PdefSizes, DISABLED_Table) {
     if (!path) GTEST_SKIP() << name << " not found";
     const Mesh scan = formats::read_mesh(*path).value().mesh;
     draco11.push_back(
-        static_cast<double>(draco::write(scan, {.position_bits = 11, .level = 7}).value().size()));
+        static_cast<double>(drc::write(scan, {.position_bits = 11, .level = 7}).value().size()));
     draco14.push_back(
-        static_cast<double>(draco::write(scan, {.position_bits = 14, .level = 7}).value().size()));
+        static_cast<double>(drc::write(scan, {.position_bits = 14, .level = 7}).value().size()));
     const align::Alignment alignment = align::align_scan(scan, std::nullopt, name).value();
     const pipeline::CanonicalScan canonical = pipeline::canonical_scan(scan, alignment);
     for (std::size_t r = 0; r < ratios.size(); ++r) {

@@ -3,7 +3,9 @@
 
 #include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/off/off.hpp"
 #include "pdeface/ply/ply.hpp"
+#include "pdeface/stl/stl.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,6 +5,10 @@
 //! Decoding untrusted bytes is safe: before libdraco sees them, the header, the metadata block and the
 //! element counts are checked against the size of the data, so a hostile file fails fast with an error
 //! instead of making libdraco allocate gigabytes (see third_party_notes/draco.md).
+//!
+//! The namespace is `pdeface::drc` (the file extension), not `draco`: `::draco` is libdraco's, and a
+//! `pdeface::draco` would hide it from all code inside `pdeface` (the folder, the header path and the
+//! target keep the name: `formats/draco`, `pdeface/draco/draco.hpp`, `pdeface::draco`).
 
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
@@ -12,7 +16,7 @@
 #include <string>
 #include <string_view>
 
-namespace pdeface::draco {
+namespace pdeface::drc {
 
 //! The most elements (points, faces) Draco data may claim per byte. Real scans hold 0.3-2 per byte; the
 //! most compressible data we could make (a flat grid quantised to 1 bit) 71. libdraco allocates ~30 bytes
@@ -50,4 +54,4 @@ struct WriteOptions {
 [[nodiscard]] Result<std::string> write(const Mesh& mesh, const WriteOptions& options = {},
                                         Notes* notes = nullptr);
 
-} // namespace pdeface::draco
+} // namespace pdeface::drc

@@ -1,6 +1,6 @@
 #pragma once
 //! \file
-//! What pdeface::gltf shares with pdeface::draco to read and write `KHR_draco_mesh_compression`: the
+//! What pdeface::gltf shares with pdeface::drc to read and write `KHR_draco_mesh_compression`: the
 //! encoder with the ids of the attributes it wrote, and the checked decoder. Not a stable API.
 
 #include "pdeface/core/mesh.hpp"
@@ -13,7 +13,7 @@
 #include <string_view>
 #include <vector>
 
-namespace pdeface::draco::detail {
+namespace pdeface::drc::detail {
 
 //! How an attribute's values are stored in the Draco data (integers are normalised).
 enum class ValueType { Float, UnsignedByte, UnsignedShort };
@@ -51,4 +51,4 @@ struct Decoded {
 //! geometry data"; at most 200 bytes of it, as `excerpt` quotes them (tinygltf quotes whole data URIs).
 [[nodiscard]] std::string message_text(std::string message);
 
-} // namespace pdeface::draco::detail
+} // namespace pdeface::drc::detail

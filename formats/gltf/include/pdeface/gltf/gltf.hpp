@@ -31,7 +31,7 @@ namespace pdeface::gltf {
 
 struct WriteOptions {
   bool binary = true; //!< GLB; false writes a `.gltf` JSON document with the buffer as a data URI
-  std::optional<draco::WriteOptions> draco; //!< set: compress the primitive with KHR_draco_mesh_compression
+  std::optional<drc::WriteOptions> draco; //!< set: compress the primitive with KHR_draco_mesh_compression
 };
 
 //! A GLB (or .gltf) that the Khronos glTF validator accepts without errors: one mesh, one primitive (mode

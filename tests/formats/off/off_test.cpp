@@ -2,6 +2,7 @@
 
 #include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/off/off.hpp"
 #include "pdeface/ply/ply.hpp"
 
 #include <gtest/gtest.h>
@@ -24,7 +25,7 @@ constexpr std::string_view kSquare = "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 
 
 TEST(OffRead, CommentsBlankLinesQuadsAndFaceColours) {
   Notes notes;
-  const Result<Mesh> mesh = off::read(fixture("ply", "pyramid_comments.off"), "pyramid_comments.off", &notes);
+  const Result<Mesh> mesh = off::read(fixture("off", "pyramid_comments.off"), "pyramid_comments.off", &notes);
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->vertex_count(), 5u);
   EXPECT_EQ(mesh->triangles,
@@ -37,7 +38,7 @@ TEST(OffRead, CommentsBlankLinesQuadsAndFaceColours) {
 // OpenMesh reads OFF streams as plain OFF: COFF colours and NOFF normals are dropped, with notes.
 TEST(OffRead, ColoursAndNormalsAreDropped) {
   Notes notes;
-  const Result<Mesh> mesh = off::read(fixture("ply", "colored_normals.off"), "colored_normals.off", &notes);
+  const Result<Mesh> mesh = off::read(fixture("off", "colored_normals.off"), "colored_normals.off", &notes);
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->positions[2], Vec3(0, 1, 0));
   EXPECT_EQ(mesh->triangles, (std::vector<Triangle>{{0, 1, 2}}));

@@ -3,10 +3,10 @@
 // cannot see what the header line announces (COFF, NOFF), so it reads every stream as plain OFF
 // (third_party_notes/openmesh.md).
 
-#include "pdeface/ply/ply.hpp"
+#include "pdeface/off/off.hpp"
 
-#include "openmesh_io.hpp"
 #include "pdeface/core/text.hpp"
+#include "pdeface/openmesh_io/openmesh_io.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
@@ -209,7 +209,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   std::string text(bytes);
   const Units units = blank_comments(text);
   if (Result<void> ok = Validator(text, source, notes).run(); !ok) return std::move(ok).error();
-  Result<Mesh> mesh = ply::detail::read_openmesh(std::move(text), {.extension = "off"}, source, notes);
+  Result<Mesh> mesh = openmesh_io::read_openmesh(std::move(text), {.extension = "off"}, source, notes);
   if (mesh) mesh->units = units;
   return mesh;
 }
@@ -217,7 +217,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
 Result<std::string> write(const Mesh& mesh, Notes* notes) {
   if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
   Result<std::string> bytes =
-      ply::detail::write_openmesh(mesh, {.extension = "off", .binary = false}, "OFF", notes);
+      openmesh_io::write_openmesh(mesh, {.extension = "off", .binary = false}, "OFF", notes);
   if (!bytes || mesh.units == Units::Unknown) return bytes;
   // A comment after the OFF line states the units; our reader finds it, other readers skip it.
   bytes->insert(bytes->find('\n') + 1, fmt::format("# units {}\n", to_string(mesh.units)));

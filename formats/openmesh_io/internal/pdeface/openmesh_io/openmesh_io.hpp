@@ -1,8 +1,9 @@
 #pragma once
-// OpenMesh's IO, made safe to call from any thread and silent: every call goes through one mutex
-// (OpenMesh's readers and writers are global singletons that keep per-file state), its log streams are
-// captured into our error messages, and meshes travel as polygon soups, never as half-edge meshes (which
-// would reject or duplicate non-manifold faces and change the counts).
+// OpenMesh's IO as the PLY, OFF and STL code shares it (internal to formats/), made safe to call from any
+// thread and silent: every call goes through one mutex (OpenMesh's readers and writers are global singletons
+// that keep per-file state), its log streams are captured into our error messages, and meshes travel as
+// polygon soups, never as half-edge meshes (which would reject or duplicate non-manifold faces and change
+// the counts).
 //
 // The bytes handed to `read_openmesh` must already have passed the format's validator: OpenMesh's readers
 // hang, crash or misread silently on malformed input (see third_party_notes/openmesh.md).
@@ -13,7 +14,7 @@
 #include <string>
 #include <string_view>
 
-namespace pdeface::ply::detail {
+namespace pdeface::openmesh_io {
 
 struct OpenMeshRead {
   std::string_view extension; //!< "ply" or "off": picks OpenMesh's reader (STL is read by stl.cpp itself)
@@ -38,4 +39,4 @@ struct OpenMeshWrite {
 [[nodiscard]] Result<std::string> write_openmesh(const Mesh& mesh, const OpenMeshWrite& how,
                                                  std::string_view format, Notes* notes);
 
-} // namespace pdeface::ply::detail
+} // namespace pdeface::openmesh_io

@@ -3,6 +3,7 @@
 #include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/ply/ply.hpp"
+#include "pdeface/stl/stl.hpp"
 
 #include <gtest/gtest.h>
 
@@ -61,7 +62,7 @@ TEST(StlRead, BinaryCornersAreMerged) {
 }
 
 TEST(StlRead, AsciiFixture) {
-  const Result<Mesh> mesh = stl::read(fixture("ply", "square_ascii.stl"), "square_ascii.stl");
+  const Result<Mesh> mesh = stl::read(fixture("stl", "square_ascii.stl"), "square_ascii.stl");
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->vertex_count(), 4u);
   EXPECT_EQ(mesh->triangle_count(), 2u);
@@ -165,7 +166,7 @@ TEST(StlReadErrors, NaNCornerInBinary) {
 }
 
 TEST(StlReadErrors, AsciiWithItsLineAndColumn) {
-  const std::string good = fixture("ply", "square_ascii.stl");
+  const std::string good = fixture("stl", "square_ascii.stl");
   auto replaced = [&](std::string_view from, std::string_view to) {
     std::string text = good;
     text.replace(text.find(from), from.size(), to);
@@ -186,7 +187,7 @@ TEST(StlReadErrors, AsciiWithItsLineAndColumn) {
 
 TEST(StlReadErrors, NothingIsPrinted) {
   const std::string bytes = binary_square();
-  const std::string text = fixture("ply", "square_ascii.stl");
+  const std::string text = fixture("stl", "square_ascii.stl");
   testing::internal::CaptureStderr();
   testing::internal::CaptureStdout();
   for (std::size_t n = 0; n < bytes.size(); ++n)

@@ -5,11 +5,11 @@
 // merged into degenerate facets (found by fuzzing). The validator reads every corner anyway, so it builds
 // the mesh: equal corners merged into shared vertices, exactly.
 
-#include "pdeface/ply/ply.hpp"
+#include "pdeface/stl/stl.hpp"
 
-#include "openmesh_io.hpp"
 #include "pdeface/core/bytes.hpp"
 #include "pdeface/core/text.hpp"
+#include "pdeface/openmesh_io/openmesh_io.hpp"
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
@@ -218,7 +218,7 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
     return make_error(ErrorCode::InvalidArgument,
                       "STL cannot hold a point cloud (the mesh has no triangles)");
   Result<std::string> bytes =
-      ply::detail::write_openmesh(mesh, {.extension = "stl", .binary = options.binary}, "STL", notes);
+      openmesh_io::write_openmesh(mesh, {.extension = "stl", .binary = options.binary}, "STL", notes);
   if (!bytes) return bytes;
   // The binary header and the solid line are free text: they name the writer and state the units.
   const std::string units =

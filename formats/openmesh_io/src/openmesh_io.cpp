@@ -1,4 +1,4 @@
-#include "openmesh_io.hpp"
+#include "pdeface/openmesh_io/openmesh_io.hpp"
 
 #include "pdeface/core/openmesh.hpp"
 
@@ -18,7 +18,7 @@
 #include <optional>
 #include <sstream>
 
-namespace pdeface::ply::detail {
+namespace pdeface::openmesh_io {
 namespace {
 
 using OpenMesh::EdgeHandle;
@@ -343,4 +343,4 @@ Result<std::string> write_openmesh(const Mesh& mesh, const OpenMeshWrite& how, s
   return std::move(out).str();
 }
 
-} // namespace pdeface::ply::detail
+} // namespace pdeface::openmesh_io
