@@ -25,6 +25,11 @@ constexpr double kPitReachMm = 25.0;
 // An eye that is a hole of the mesh is a fissure: at most this high for its width (+2 mm). A capture hole
 // that swallowed the eye is rounder, and its ends are not the eye's corners.
 constexpr double kEyeHoleAspect = 0.6;
+// A smoothed map is made only where a search reads it (`DepthMap::smoothed` within a box): the box is what
+// the search visits widened by this many cells, more than a read reaches beyond it (a peak refined by half
+// a cell, its neighbours a cell away, the cupness's neighbours another, and the next cell of a bilinear
+// look-up).
+constexpr double kReadMarginCells = 4.0;
 
 // ---- landmarks in the depth map -------------------------------------------------------------------------
 
@@ -50,9 +55,12 @@ Eigen::Vector2d refined_peak(const auto& score, Eigen::Vector2d at, double h) {
 // half of the previous column's, so that the walk follows the line, rising with a smile, and does not
 // slide off into a fold that leaves it: the furrows running down from the corners of an older mouth), the
 // columns at least `fraction` as deep as the deepest one; the end is the last of them reached without a
-// gap.
-std::optional<Eigen::Vector2d> hollow_end(const DepthMap& map, double x_from, double x_to, double y0,
-                                          double y1, double r, double fraction = 0.35) {
+// gap. On `raw` smoothed by `sigma`, only where the walk reads it.
+std::optional<Eigen::Vector2d> hollow_end(const DepthMap& raw, double sigma, double x_from, double x_to,
+                                          double y0, double y1, double r, double fraction = 0.35) {
+  const double reach = r + kReadMarginCells * raw.cell();
+  const DepthMap map = raw.smoothed(sigma, std::min(x_from, x_to) - reach, std::max(x_from, x_to) + reach,
+                                    y0 - reach, y1 + reach);
   const double step = x_to > x_from ? map.cell() : -map.cell();
   std::vector<std::pair<double, Eigen::Vector2d>> columns; // (most hollow relief, where)
   std::optional<double> last_y;
@@ -85,8 +93,13 @@ std::optional<Eigen::Vector2d> hollow_end(const DepthMap& map, double x_from, do
   return Eigen::Vector2d(where.x(), refined_peak(hollowness, where, map.cell()).y());
 }
 
-// The most cup-shaped point of a window, as (x, y) in the frame.
-std::optional<Eigen::Vector2d> most_cupped(const DepthMap& map, double x0, double x1, double y0, double y1) {
+// The most cup-shaped point of a window, as (x, y) in the frame, on `raw` smoothed by `sigma` (only
+// where the search reads it).
+std::optional<Eigen::Vector2d> most_cupped(const DepthMap& raw, double sigma, double x0, double x1, double y0,
+                                           double y1) {
+  const double margin = kReadMarginCells * raw.cell();
+  const DepthMap map =
+      raw.smoothed(sigma, std::min(x0, x1) - margin, std::max(x0, x1) + margin, y0 - margin, y1 + margin);
   std::optional<Eigen::Vector2d> best;
   double top = 0.0; // only cups count
   for (double y = y0; y <= y1; y += map.cell())
@@ -278,14 +291,17 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
   if (!tip) return found;
   place(Landmark::NoseTip, tip->x(), tip->y());
   const double x0 = tip->x(), y0 = tip->y();
-  const DepthMap cups = map.smoothed(2.5);
-  const DepthMap soft = map.smoothed(1.0); // point clouds splat unevenly: their raw map is rough
+  constexpr double kCupSigma = 2.5; // the eye corners' cups
+  constexpr double kSoftSigma =
+      1.0; // the mouth's hollow: point clouds splat unevenly, their raw map is rough
+  const double margin = kReadMarginCells * cell;
   std::vector<double> eye_y, mouth_y;
   // The mouth line where it crosses the midline. Down the midline from the nose the profile rises onto
   // the upper lip, dips into the mouth, rises onto the lower lip, dips under it and rises onto the chin:
   // the mouth is the lowest point between the first two bumps (the lips). Failing that, the deepest
   // groove (relief) between the nose and the chin.
-  const DepthMap profile_map = map.smoothed(1.5);
+  const DepthMap profile_map =
+      map.smoothed(1.5, x0 - margin, x0 + margin, y0 - 60.0 - margin, y0 - 6.0 + margin);
   std::vector<std::pair<double, double>> midline; // (y, z), downwards
   for (double y = y0 - 6.0; y >= y0 - 60.0; y -= 1.0)
     if (const auto z = profile_map.at(x0, y)) midline.emplace_back(y, *z);
@@ -306,6 +322,9 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
     y_slit = lowest->first;
   } else {
     double deepest = 0.0;
+    const double reach = 4.0 + margin;
+    const DepthMap soft =
+        map.smoothed(kSoftSigma, x0 - reach, x0 + reach, y0 - 45.0 - reach, y0 - 18.0 + reach);
     for (double y = y0 - 18.0; y >= y0 - 45.0; y -= 1.0)
       if (const auto rel = soft.relief(x0, y, 4.0); rel && *rel < deepest) {
         deepest = *rel;
@@ -347,10 +366,10 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
                    left ? eye->rightmost : eye->leftmost);
       eye_y.push_back(eye->centre.y());
     } else if (const auto inner =
-                   most_cupped(cups, x0 + side * 6.0, x0 + side * 30.0, y0 + 15.0, y0 + 55.0)) {
+                   most_cupped(map, kCupSigma, x0 + side * 6.0, x0 + side * 30.0, y0 + 15.0, y0 + 55.0)) {
       place(left ? Landmark::EyeInnerLeft : Landmark::EyeInnerRight, inner->x(), inner->y());
       eye_y.push_back(inner->y());
-      if (const auto outer = most_cupped(cups, inner->x() + side * 18.0, inner->x() + side * 40.0,
+      if (const auto outer = most_cupped(map, kCupSigma, inner->x() + side * 18.0, inner->x() + side * 40.0,
                                          inner->y() - 10.0, inner->y() + 8.0))
         place(left ? Landmark::EyeOuterLeft : Landmark::EyeOuterRight, outer->x(), outer->y());
     }
@@ -358,7 +377,8 @@ Landmarks search_landmarks(std::span<const Vec3> points, std::span<const Triangl
       place_vertex(left ? Landmark::MouthLeft : Landmark::MouthRight,
                    left ? mouth_hole->rightmost : mouth_hole->leftmost);
       mouth_y.push_back(local[left ? mouth_hole->rightmost : mouth_hole->leftmost].y());
-    } else if (const auto mouth = hollow_end(soft, x0, x0 + side * 40.0, y_slit - 8.0, y_slit + 6.0, 5.0)) {
+    } else if (const auto mouth =
+                   hollow_end(map, kSoftSigma, x0, x0 + side * 40.0, y_slit - 8.0, y_slit + 6.0, 5.0)) {
       place(left ? Landmark::MouthLeft : Landmark::MouthRight, mouth->x(), mouth->y());
       mouth_y.push_back(mouth->y());
     }
@@ -444,11 +464,14 @@ std::optional<double> eye_hollowness(std::span<const Vec3> points, std::span<con
   map.drop_pits(kPitDepthMm, kPitReachMm);
   map.fill_holes(4);
   // Smoothed at least as much as the points are apart: a coarse cloud's splats make hollows of their own.
-  const DepthMap soft = map.smoothed(std::max(1.5, spacing));
+  const double sigma = std::max(1.5, spacing);
+  constexpr double kRadius = 12.0;
+  const double reach = kRadius + kReadMarginCells * map.cell();
   std::optional<double> least;
   for (Landmark l : {Landmark::EyeInnerLeft, Landmark::EyeInnerRight}) {
     const Vec3 q = frame.apply(*landmarks[l]);
-    const std::optional<double> rel = soft.relief(q.x(), q.y(), 12.0);
+    const DepthMap soft = map.smoothed(sigma, q.x() - reach, q.x() + reach, q.y() - reach, q.y() + reach);
+    const std::optional<double> rel = soft.relief(q.x(), q.y(), kRadius);
     if (!rel) return std::nullopt;
     least = std::min(least.value_or(-*rel), -*rel);
   }

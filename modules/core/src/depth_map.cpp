@@ -1,6 +1,9 @@
 #include "pdeface/core/depth_map.hpp"
 
 #include <algorithm>
+#include <array>
+#include <utility>
+#include <vector>
 
 namespace pdeface {
 namespace {
@@ -90,44 +93,85 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
 
 void DepthMap::drop_pits(double depth, double reach) {
   const int n = std::max(1, static_cast<int>(std::ceil(reach / cell_)));
-  const auto front_within = [&](int r, int c, int dr, int dc) {
-    double best = -std::numeric_limits<double>::infinity();
-    for (int k = 1; k <= n; ++k) {
-      const int rr = r + k * dr, cc = c + k * dc;
-      if (rr < 0 || cc < 0 || rr >= rows() || cc >= cols()) break;
-      if (known(rr, cc)) best = std::max(best, z_(rr, cc));
+  // The front-most known depth among the n cells before each cell of a line (-inf when none), for every
+  // cell at once: a sliding-window maximum (the window's candidates in a ring, decreasing), so that the
+  // cost does not grow with the reach.
+  const double none = -std::numeric_limits<double>::infinity();
+  std::vector<int> ring;
+  const auto front_before = [&](const auto& z_at, int length, const auto& store) {
+    ring.resize(static_cast<std::size_t>(length) + 1);
+    std::size_t head = 0, tail = 0; // the window's candidates: ring[head, tail), their depths decreasing
+    const auto depth_at = [&](int i) { return std::isnan(z_at(i)) ? none : z_at(i); };
+    for (int i = 0; i < length; ++i) {
+      while (head < tail && ring[head] < i - n)
+        ++head;
+      store(i, head < tail ? depth_at(ring[head]) : none);
+      const double zi = depth_at(i);
+      while (tail > head && depth_at(ring[tail - 1]) <= zi)
+        --tail;
+      ring[tail++] = i;
     }
-    return best;
   };
-  Eigen::MatrixXd next = z_;
+  // Along each row and column, both ways: the front within reach before and after every cell.
+  Eigen::MatrixXd left(z_.rows(), z_.cols()), right(z_.rows(), z_.cols());
+  Eigen::MatrixXd below(z_.rows(), z_.cols()), above(z_.rows(), z_.cols());
+  for (int r = 0; r < rows(); ++r) {
+    front_before([&](int c) { return z_(r, c); }, cols(), [&](int c, double v) { left(r, c) = v; });
+    front_before([&](int c) { return z_(r, cols() - 1 - c); }, cols(),
+                 [&](int c, double v) { right(r, cols() - 1 - c) = v; });
+  }
+  for (int c = 0; c < cols(); ++c) {
+    front_before([&](int r) { return z_(r, c); }, rows(), [&](int r, double v) { below(r, c) = v; });
+    front_before([&](int r) { return z_(rows() - 1 - r, c); }, rows(),
+                 [&](int r, double v) { above(rows() - 1 - r, c) = v; });
+  }
   for (int r = 0; r < rows(); ++r)
     for (int c = 0; c < cols(); ++c) {
       if (!known(r, c)) continue;
       const double floor = z_(r, c) + depth;
-      const bool across = front_within(r, c, 0, -1) > floor && front_within(r, c, 0, 1) > floor;
-      const bool along = front_within(r, c, -1, 0) > floor && front_within(r, c, 1, 0) > floor;
-      if (across || along) next(r, c) = std::numeric_limits<double>::quiet_NaN();
+      const bool across = left(r, c) > floor && right(r, c) > floor;
+      const bool along = below(r, c) > floor && above(r, c) > floor;
+      if (across || along) z_(r, c) = std::numeric_limits<double>::quiet_NaN();
     }
-  z_ = std::move(next);
 }
 
 void DepthMap::fill_holes(int max_gap) {
-  for (int pass = 0; pass < max_gap; ++pass) {
-    Eigen::MatrixXd next = z_;
+  // Pass by pass, each unknown cell with two or more known neighbours gets their mean (neighbours as they
+  // were before the pass). Only the first pass looks at every cell: a cell can be filled in a later pass
+  // only next to one the pass before filled.
+  std::vector<std::pair<int, int>> candidates, next_candidates;
+  for (int c = 0; c < cols(); ++c)
     for (int r = 0; r < rows(); ++r)
-      for (int c = 0; c < cols(); ++c) {
-        if (known(r, c)) continue;
-        double sum = 0.0;
-        int n = 0;
-        for (auto [dr, dc] : {std::pair{-1, 0}, {1, 0}, {0, -1}, {0, 1}}) {
-          const int rr = r + dr, cc = c + dc;
-          if (rr < 0 || cc < 0 || rr >= rows() || cc >= cols() || !known(rr, cc)) continue;
-          sum += z_(rr, cc);
-          ++n;
-        }
-        if (n >= 2) next(r, c) = sum / n; // only inside gaps, never growing the outline
+      if (!known(r, c)) candidates.emplace_back(r, c);
+  std::vector<std::pair<std::pair<int, int>, double>> filled;
+  Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic> queued =
+      Eigen::Matrix<int, Eigen::Dynamic, Eigen::Dynamic>::Constant(z_.rows(), z_.cols(), -1);
+  constexpr std::array<std::pair<int, int>, 4> kNeighbours{{{-1, 0}, {1, 0}, {0, -1}, {0, 1}}};
+  for (int pass = 0; pass < max_gap && !candidates.empty(); ++pass) {
+    filled.clear();
+    for (const auto& [r, c] : candidates) {
+      double sum = 0.0;
+      int n = 0;
+      for (auto [dr, dc] : kNeighbours) {
+        const int rr = r + dr, cc = c + dc;
+        if (rr < 0 || cc < 0 || rr >= rows() || cc >= cols() || !known(rr, cc)) continue;
+        sum += z_(rr, cc);
+        ++n;
       }
-    z_ = std::move(next);
+      if (n >= 2) filled.push_back({{r, c}, sum / n}); // only inside gaps, never growing the outline
+    }
+    next_candidates.clear();
+    for (const auto& [cell, z] : filled)
+      z_(cell.first, cell.second) = z;
+    for (const auto& [cell, z] : filled)
+      for (auto [dr, dc] : kNeighbours) {
+        const int rr = cell.first + dr, cc = cell.second + dc;
+        if (rr < 0 || cc < 0 || rr >= rows() || cc >= cols() || known(rr, cc) || queued(rr, cc) == pass)
+          continue;
+        queued(rr, cc) = pass;
+        next_candidates.emplace_back(rr, cc);
+      }
+    std::swap(candidates, next_candidates);
   }
 }
 
@@ -167,6 +211,10 @@ std::optional<double> DepthMap::relief(double x, double y, double radius) const 
 }
 
 DepthMap DepthMap::smoothed(double sigma) const {
+  return smoothed(sigma, x0_, x_of(cols() - 1), y0_, y_of(rows() - 1));
+}
+
+DepthMap DepthMap::smoothed(double sigma, double x0, double x1, double y0, double y1) const {
   // Taps further than the grid is wide change nothing: a huge sigma costs at most the grid.
   const int reach = std::max(0, clamped(std::ceil(3.0 * sigma / cell_), std::max(rows(), cols())));
   const int width = 2 * reach + 1;
@@ -177,9 +225,21 @@ DepthMap DepthMap::smoothed(double sigma) const {
   };
   for (int i = -reach; i <= reach; ++i)
     tap(i) = std::exp(-0.5 * (i * cell_ / sigma) * (i * cell_ / sigma));
+  DepthMap out = *this;
+  out.z_.setConstant(std::numeric_limits<double>::quiet_NaN());
+  // The cells of the window, and the block of the grid their taps reach: blurred within that block, a
+  // window's cell sums the same taps in the same order as over the whole grid.
+  const int c0 = std::max(0, clamped(std::floor((std::min(x0, x1) - x0_) / cell_), cols()));
+  const int c1 = std::min(cols() - 1, clamped(std::ceil((std::max(x0, x1) - x0_) / cell_), cols()));
+  const int r0 = std::max(0, clamped(std::floor((std::min(y0, y1) - y0_) / cell_), rows()));
+  const int r1 = std::min(rows() - 1, clamped(std::ceil((std::max(y0, y1) - y0_) / cell_), rows()));
+  if (c0 > c1 || r0 > r1) return out;
+  const int bc0 = std::max(0, c0 - reach), bc1 = std::min(cols() - 1, c1 + reach);
+  const int br0 = std::max(0, r0 - reach), br1 = std::min(rows() - 1, r1 + reach);
+  const auto block = z_.block(br0, bc0, br1 - br0 + 1, bc1 - bc0 + 1);
   // Separable blur of z·known and of known, then their ratio: unknown cells do not pull depths to zero.
-  const Eigen::MatrixXd mask = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : 1.0; });
-  const Eigen::MatrixXd values = z_.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
+  const Eigen::MatrixXd mask = block.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : 1.0; });
+  const Eigen::MatrixXd values = block.unaryExpr([](double v) { return std::isnan(v) ? 0.0 : v; });
   // Separable, a shifted block at a time (whole columns: Eigen's storage order, so it vectorises).
   auto blur = [&](const Eigen::MatrixXd& in) {
     const Eigen::Index rows = in.rows(), cols = in.cols();
@@ -189,20 +249,19 @@ DepthMap DepthMap::smoothed(double sigma) const {
       if (n <= 0) continue;
       across.middleCols(std::max(0, -k), n) += tap(k) * in.middleCols(std::max(0, k), n);
     }
-    Eigen::MatrixXd out = Eigen::MatrixXd::Zero(rows, cols);
+    Eigen::MatrixXd blurred = Eigen::MatrixXd::Zero(rows, cols);
     for (int k = -reach; k <= reach; ++k) {
       const Eigen::Index n = rows - std::abs(k);
       if (n <= 0) continue;
-      out.middleRows(std::max(0, -k), n) += tap(k) * across.middleRows(std::max(0, k), n);
+      blurred.middleRows(std::max(0, -k), n) += tap(k) * across.middleRows(std::max(0, k), n);
     }
-    return out;
+    return blurred;
   };
   const Eigen::MatrixXd weight = blur(mask);
   const Eigen::MatrixXd sum = blur(values);
-  DepthMap out = *this;
-  for (Eigen::Index r = 0; r < z_.rows(); ++r)
-    for (Eigen::Index c = 0; c < z_.cols(); ++c)
-      out.z_(r, c) = std::isnan(z_(r, c)) ? z_(r, c) : sum(r, c) / weight(r, c);
+  for (int c = c0; c <= c1; ++c)
+    for (int r = r0; r <= r1; ++r)
+      if (!std::isnan(z_(r, c))) out.z_(r, c) = sum(r - br0, c - bc0) / weight(r - br0, c - bc0);
   return out;
 }
 

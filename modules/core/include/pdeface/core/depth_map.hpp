@@ -34,6 +34,9 @@ public:
 
   //! The map blurred by a Gaussian of `sigma` mm (unknown cells stay unknown and do not contribute).
   [[nodiscard]] DepthMap smoothed(double sigma) const;
+  //! `smoothed(sigma)` within the box [x0, x1] × [y0, y1] (mm; every cell touching it), unknown outside
+  //! it: the same depths to the bit where they are known, for the box's cost rather than the grid's.
+  [[nodiscard]] DepthMap smoothed(double sigma, double x0, double x1, double y0, double y1) const;
   //! The smaller eigenvalue of the Hessian of z (1/mm): positive where the surface is a cup (concave
   //! in every direction, as the corners of the eyes and mouth), negative on caps and ridges.
   [[nodiscard]] std::optional<double> cupness(double x, double y) const;
