@@ -23,6 +23,7 @@ const Mesh& face() {
   return mesh;
 }
 
+// Computed once per process: the suites using it run in one process each (tests/CMakeLists.txt).
 const align::Alignment& alignment() {
   static const align::Alignment a = align::align_scan(face(), std::nullopt, "sample").value();
   return a;

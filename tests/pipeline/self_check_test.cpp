@@ -15,6 +15,7 @@ struct SampleFace {
   Reconstruction right;
 };
 
+// Computed once per process: the suites using it run in one process each (tests/CMakeLists.txt).
 const SampleFace& sample() {
   static const SampleFace s = [] {
     const Mesh face = sample_face();
