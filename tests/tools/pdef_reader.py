@@ -4,6 +4,11 @@ files: it checks the container, decodes every section and prints the document, t
 significant digits, one line per sample: "j k x y z filled". The tests compare its output with the C++
 decoder's (PdefSpec.AnIndependentReaderAgrees). Lossless files need zstd and are only described.
 
+A version 3 file (or any prefix of one that holds its curves) then has its residual layer: a line
+"residual width W height H levels … step Δ(mm) planes P stream S held n complete 0|1" and H lines of W
+offsets (mm, 17 digits), line k the nodes (0 … W−1, k); or "residual none: …" when the file is cut inside
+the layer's header (PdefSpec.AnIndependentReaderReadsTheResidualLayer).
+
 Usage: python3 pdef_reader.py FILE.pdef
 """
 import math
@@ -21,13 +26,17 @@ class Bad(Exception):
     pass
 
 
+class Truncated(Bad):
+    pass
+
+
 class Reader:
     def __init__(self, data, pos, end):
         self.data, self.pos, self.end = data, pos, end
 
     def take(self, n):
         if self.pos + n > self.end:
-            raise Bad("truncated at byte %d" % self.pos)
+            raise Truncated("truncated at byte %d" % self.pos)
         out = self.data[self.pos:self.pos + n]
         self.pos += n
         return out
@@ -201,18 +210,242 @@ def read_heights(r, X, J, K, step):
     return y
 
 
+#  The residual layer (version 3)
+
+ALPHA, BETA = -1.586134342059924, -0.052980118572961
+GAMMA, DELTA = 0.882911075530934, 0.443506852043971
+ZETA_LOW, ZETA_HIGH = 1.139764007654642, 0.887277075635907
+BLOCK = 16
+
+
+class Starved(Exception):
+    """The range decoder needed a byte beyond the prefix: the decision asked for is not the encoder's."""
+
+
+class RangeDecoder:
+    """LZMA's binary range decoder over the stream's bytes held; 21 adaptive probabilities of a 0."""
+
+    def __init__(self, stream):
+        self.data, self.pos, self.starved = stream, 0, False
+        self.range, self.code = 0xFFFFFFFF, 0
+        for _ in range(4):
+            self.code = (self.code << 8) | self.next_byte()
+        self.p = [1024] * 21
+
+    def next_byte(self):
+        if self.pos >= len(self.data):
+            self.starved = True
+            return 0
+        self.pos += 1
+        return self.data[self.pos - 1]
+
+    def bit(self, context):
+        if self.starved:
+            raise Starved()
+        p = self.p[context]
+        bound = (self.range >> 11) * p
+        if self.code < bound:
+            self.range = bound
+            self.p[context] = p + ((2048 - p) >> 5)
+            out = 0
+        else:
+            self.code -= bound
+            self.range -= bound
+            self.p[context] = p - (p >> 5)
+            out = 1
+        while self.range < 2 ** 24:
+            self.range = (self.range << 8) & 0xFFFFFFFF
+            self.code = ((self.code << 8) | self.next_byte()) & 0xFFFFFFFF
+        return out
+
+
+def levels_for(w, h):
+    levels = 0
+    while levels < 8 and w >= 8 and h >= 8:
+        w, h, levels = (w + 1) // 2, (h + 1) // 2, levels + 1
+    return levels
+
+
+def band_sizes(W, H, levels):  # (w_l, h_l) for l = 0 … levels
+    sizes = [(W, H)]
+    for _ in range(levels):
+        w, h = sizes[-1]
+        sizes.append(((w + 1) // 2, (h + 1) // 2))
+    return sizes
+
+
+def subbands(W, H, levels):
+    """(x0, y0, x1, y1, kind) of every band in coding order: the low band, then each level's from the last."""
+    sizes = band_sizes(W, H, levels)
+    bands = [(0, 0, sizes[levels][0], sizes[levels][1], 0)]
+    for l in range(levels - 1, -1, -1):
+        (w, h), (w1, h1) = sizes[l], sizes[l + 1]
+        bands += [(w1, 0, w, h1, 1), (0, h1, w1, h, 1), (w1, h1, w, h, 2)]
+    return bands
+
+
+def decode_stream(stream, W, H, levels, planes):
+    """The bit-planes: each coefficient's magnitude m, sign and the lowest plane known (None: never
+    significant), as far as the stream's bytes held determine them."""
+    m, negative, lowest, first = [0] * (W * H), [False] * (W * H), [None] * (W * H), [0] * (W * H)
+    bands = []
+    for x0, y0, x1, y1, kind in subbands(W, H, levels):
+        columns, rows = -(-(x1 - x0) // BLOCK), -(-(y1 - y0) // BLOCK)
+        bands.append((x0, y0, x1, y1, kind, columns, rows, [False] * (columns * rows)))
+    rc = RangeDecoder(stream)
+    try:
+        for b in range(planes - 1, -1, -1):
+            for x0, y0, x1, y1, kind, columns, rows, active in bands:
+                for by in range(rows):
+                    for bx in range(columns):
+                        if not active[by * columns + bx]:
+                            left = bx > 0 and active[by * columns + bx - 1]
+                            above = by > 0 and active[(by - 1) * columns + bx]
+                            if not rc.bit(12 + 2 * kind + (1 if left or above else 0)):
+                                continue
+                            active[by * columns + bx] = True
+                        for y in range(y0 + by * BLOCK, min(y0 + (by + 1) * BLOCK, y1)):
+                            for x in range(x0 + bx * BLOCK, min(x0 + (bx + 1) * BLOCK, x1)):
+                                i = y * W + x
+                                if lowest[i] is not None:
+                                    if rc.bit(19 if first[i] == b + 1 else 20):
+                                        m[i] |= 1 << b
+                                    lowest[i] = b
+                                    continue
+                                count = 0
+                                for yy in (y - 1, y, y + 1):
+                                    for xx in (x - 1, x, x + 1):
+                                        if (yy, xx) != (y, x) and y0 <= yy < y1 and x0 <= xx < x1 and \
+                                                lowest[yy * W + xx] is not None:
+                                            count += 1
+                                if rc.bit(4 * kind + min(count, 3)):
+                                    negative[i] = rc.bit(18) == 1
+                                    m[i], lowest[i], first[i] = 1 << b, b, b
+    except Starved:
+        pass
+    return m, negative, lowest
+
+
+def inverse_lift(values):
+    """The inverse one-dimensional CDF 9/7 transform of n ≥ 2 values stored as [lows …, highs …]."""
+    n, lows = len(values), (len(values) + 1) // 2
+    x = [0.0] * n
+    for i in range(n):
+        if i < lows:
+            x[2 * i] = values[i] / ZETA_LOW
+        else:
+            x[2 * (i - lows) + 1] = values[i] / ZETA_HIGH
+
+    def at(i):  # symmetric extension
+        return x[1] if i < 0 else x[n - 2] if i >= n else x[i]
+
+    # x −= c (a + b) as x − (c · (a + b)), each step over all its i before the next
+    for parity, c in ((0, DELTA), (1, GAMMA), (0, BETA), (1, ALPHA)):
+        for i in range(parity, n, 2):
+            x[i] = x[i] - c * (at(i - 1) + at(i + 1))
+    return x
+
+
+def inverse_wavelet(c, W, H, levels):
+    sizes = band_sizes(W, H, levels)
+    for l in range(levels - 1, -1, -1):
+        w, h = sizes[l]
+        for x in range(w):
+            column = inverse_lift([c[y * W + x] for y in range(h)])
+            for y in range(h):
+                c[y * W + x] = column[y]
+        for y in range(h):
+            c[y * W:y * W + w] = inverse_lift(c[y * W:y * W + w])
+    return c
+
+
+def read_residual(data, L):
+    """The layer after the checksum: its settings, and the offsets (None when cut inside its header)."""
+    r = Reader(data, L, len(data))
+    # A prefix that ends inside the header decodes to the curves alone, but what it holds is checked as it
+    # is read: an unknown transform, a varint not in its shortest form or too long.
+    try:
+        transform = r.u8()
+        if transform != 1:
+            raise Bad("residual transform %d at byte %d" % (transform, L))
+        at_w = r.pos
+        W, H = r.varint(), r.varint()
+        at_levels = r.pos
+        levels = r.u8()
+        at_step = r.pos
+        step = r.varint()
+        at_planes = r.pos
+        planes = r.u8()
+        at_s = r.pos
+        S = r.varint()
+        stream_crc = struct.unpack("<I", r.take(4))[0]
+        header_crc_at = r.pos
+        header_crc = struct.unpack("<I", r.take(4))[0]
+    except Truncated:
+        return {"cut": True}
+    if zlib.crc32(data[L:header_crc_at]) != header_crc:
+        raise Bad("the residual header's checksum at byte %d" % header_crc_at)
+    if W < 2 or H < 2:
+        raise Bad("a residual grid below 2 at byte %d" % at_w)
+    if W > 4097 or H > 4097 or W * H > 2 ** 18 + 256 * len(data):
+        raise Bad("a residual grid too large at byte %d" % at_w)
+    if levels > levels_for(W, H):
+        raise Bad("too many wavelet levels at byte %d" % at_levels)
+    if step == 0 or step >= MAX_Q:
+        raise Bad("a residual step out of range at byte %d" % at_step)
+    if planes == 0 or planes > 40:
+        raise Bad("a bit-plane count out of range at byte %d" % at_planes)
+    if S > MAX_Q:
+        raise Bad("a residual stream too long at byte %d" % at_s)
+    start = r.pos
+    if len(data) - start > S:
+        raise Bad("bytes after the residual stream at byte %d" % (start + S))
+    stream = data[start:]
+    complete = len(stream) == S
+    if complete and zlib.crc32(stream) != stream_crc:
+        raise Bad("the residual stream's checksum at byte %d" % (header_crc_at - 4))
+    m, negative, lowest = decode_stream(stream, W, H, levels, planes)
+    delta = step * UNIT
+    c = [0.0] * (W * H)
+    for i in range(W * H):
+        if lowest[i] is not None:
+            v = (m[i] + 2 ** lowest[i] / 2) * delta
+            c[i] = -v if negative[i] else v
+    return {"cut": False, "W": W, "H": H, "levels": levels, "step": delta, "planes": planes, "S": S,
+            "held": len(stream), "complete": complete, "offsets": inverse_wavelet(c, W, H, levels)}
+
+
+def print_residual(layer):
+    if layer["cut"]:
+        print("residual none: cut inside the layer's header")
+        return
+    print("residual width %d height %d levels %d step %.17g planes %d stream %d held %d complete %d" % (
+        layer["W"], layer["H"], layer["levels"], layer["step"], layer["planes"], layer["S"], layer["held"],
+        layer["complete"]))
+    W = layer["W"]
+    for k in range(layer["H"]):  # row k: v = k·π/(H − 1), its W nodes across u
+        print(" ".join("%.17g" % d for d in layer["offsets"][k * W:(k + 1) * W]))
+
+
 def main(path):
     data = open(path, "rb").read()
     if data[:4] != b"PDEF":
         raise Bad("bad magic")
-    if data[4] != 2:
-        raise Bad("unknown version %d" % data[4])
+    version = data[4]
+    if version not in (2, 3):
+        raise Bad("unknown version %d" % version)
     flags = data[5]
     if flags & ~1:
         raise Bad("unknown flags")
     length = struct.unpack_from("<I", data, 6)[0]
-    if length != len(data):
+    if length > len(data) or (version == 2 and length != len(data)):
         raise Bad("length %d, file %d" % (length, len(data)))
+    print_curves(data[:length], length, flags)
+    if version == 3:
+        print_residual(read_residual(data, length))
+
+
+def print_curves(data, length, flags):
     if zlib.crc32(data[:-4]) != struct.unpack_from("<I", data, length - 4)[0]:
         raise Bad("checksum mismatch")
     lossless = flags & 1

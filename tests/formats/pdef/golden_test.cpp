@@ -5,6 +5,8 @@
 //   sample_10.pdef / _lossless    the built-in sample face through the whole pipeline at 10 %
 //   (sample_10.json:
 //                                 what it held when it was made)
+//   sample_residual.pdef          version 3, with a residual layer (made and described in residual_test.cpp);
+//                                 here only the independent reader's test reads it
 
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/pdef/mesh.hpp"
@@ -21,6 +23,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <sstream>
 
 namespace pdeface::pdef {
 namespace {
@@ -171,39 +174,130 @@ TEST(PdefGolden, SampleFilesDecodeToWhatTheyHeld) {
 }
 
 // tests/tools/pdef_reader.py, a reader written from docs/pdef-format.md alone (Python, no code shared),
-// decodes the lossy golden files to the same values, bit for bit.
+// run on a file: its output ("" when it failed).
+std::string independent_reading(const std::filesystem::path& file, const std::filesystem::path& out) {
+  const std::string cmd = "python3 '" +
+                          (std::filesystem::path(PDEFACE_TEST_TOOLS) / "pdef_reader.py").string() + "' '" +
+                          file.string() + "' > '" + out.string() + "'";
+  if (std::system(cmd.c_str()) != 0) return {};
+  return slurp(out);
+}
+
+// The reader's document and samples ("j k x y z filled", after two lines of settings) against `face`, bit
+// for bit; leaves `in` at the first line that is not a sample.
+void expect_same_samples(std::istream& in, const Face& face, std::string_view name) {
+  std::string header, steps;
+  std::getline(in, header);
+  std::getline(in, steps);
+  EXPECT_NE(
+      header.find(fmt::format("J {} K {} N {}", face.curve_count(), face.sample_count(), *face.pde.modes)),
+      std::string::npos)
+      << header;
+  std::size_t lines = 0;
+  for (std::size_t j = 0, k = 0; in >> j >> k; ++lines) {
+    double x = 0, y = 0, z = 0;
+    int filled = 0;
+    in >> x >> y >> z >> filled;
+    ASSERT_LT(j, face.curve_count());
+    ASSERT_LT(k, face.sample_count());
+    const auto row = static_cast<Eigen::Index>(k);
+    EXPECT_EQ(x, face.curves.samples[j](row, 0)) << name << " " << j << "," << k;
+    EXPECT_EQ(y, face.curves.samples[j](row, 1)) << name << " " << j << "," << k;
+    EXPECT_EQ(z, face.curves.samples[j](row, 2)) << name << " " << j << "," << k;
+    EXPECT_EQ(filled != 0, face.filled[j][k]) << name << " " << j << "," << k;
+  }
+  EXPECT_EQ(lines, face.curve_count() * face.sample_count()) << name;
+  in.clear();
+}
+
+// The independent reader decodes the lossy golden files to the same values, bit for bit.
 TEST(PdefSpec, AnIndependentReaderAgrees) {
   if (std::system("python3 --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3 not found";
   const test::TempDir tmp;
   for (const char* name : {"tiny.pdef", "synthetic.pdef", "sample_10.pdef"}) {
-    const std::filesystem::path out = tmp / "values.txt";
-    const std::string cmd = "python3 '" +
-                            (std::filesystem::path(PDEFACE_TEST_TOOLS) / "pdef_reader.py").string() + "' '" +
-                            golden(name).string() + "' > '" + out.string() + "'";
-    ASSERT_EQ(std::system(cmd.c_str()), 0) << cmd;
-    std::ifstream in(out);
-    std::string header, steps;
-    std::getline(in, header);
-    std::getline(in, steps);
-    const Face face = decode(slurp(golden(name)), name).value();
-    EXPECT_NE(
-        header.find(fmt::format("J {} K {} N {}", face.curve_count(), face.sample_count(), *face.pde.modes)),
-        std::string::npos)
-        << header;
-    std::size_t lines = 0;
-    for (std::size_t j = 0, k = 0; in >> j >> k; ++lines) {
-      double x = 0, y = 0, z = 0;
-      int filled = 0;
-      in >> x >> y >> z >> filled;
-      ASSERT_LT(j, face.curve_count());
-      ASSERT_LT(k, face.sample_count());
-      const auto row = static_cast<Eigen::Index>(k);
-      EXPECT_EQ(x, face.curves.samples[j](row, 0)) << name << " " << j << "," << k;
-      EXPECT_EQ(y, face.curves.samples[j](row, 1)) << name << " " << j << "," << k;
-      EXPECT_EQ(z, face.curves.samples[j](row, 2)) << name << " " << j << "," << k;
-      EXPECT_EQ(filled != 0, face.filled[j][k]) << name << " " << j << "," << k;
-    }
-    EXPECT_EQ(lines, face.curve_count() * face.sample_count()) << name;
+    const std::string text = independent_reading(golden(name), tmp / "values.txt");
+    ASSERT_FALSE(text.empty()) << name;
+    std::istringstream in(text);
+    expect_same_samples(in, decode(slurp(golden(name)), name).value(), name);
+    std::string rest;
+    EXPECT_FALSE(std::getline(in, rest)) << name << ": " << rest; // a version 2 file: nothing after
+  }
+}
+
+// The reader's residual layer ("residual none: ..." when cut inside the layer's header, else a line of
+// settings and H rows of W offsets) against the C++ decoder's, the offsets bit for bit.
+void expect_same_residual(std::istream& in, const Face& face, const std::string& what) {
+  ASSERT_TRUE(face.residual) << what;
+  const Residual& layer = *face.residual;
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line)) << what;
+  if (line.starts_with("residual none")) {
+    EXPECT_TRUE(layer.field.empty()) << what;
+    return;
+  }
+  ASSERT_FALSE(layer.field.empty()) << what << ": the reader decoded a stream, the C++ did not";
+  std::istringstream settings(line);
+  std::string word;
+  std::size_t width = 0, height = 0, levels = 0, planes = 0, stream = 0, held = 0;
+  double step = 0;
+  int complete = 0;
+  settings >> word >> word >> width >> word >> height >> word >> levels >> word >> step >> word >> planes >>
+      word >> stream >> word >> held >> word >> complete;
+  ASSERT_TRUE(settings) << what << ": " << line;
+  EXPECT_EQ(width, layer.field.width) << what;
+  EXPECT_EQ(height, layer.field.height) << what;
+  EXPECT_EQ(levels, layer.levels) << what;
+  EXPECT_EQ(step, layer.step_mm) << what;
+  EXPECT_EQ(planes, layer.planes) << what;
+  EXPECT_EQ(stream, layer.stream_bytes) << what;
+  EXPECT_EQ(held, layer.bytes_read) << what;
+  EXPECT_EQ(complete != 0, layer.complete) << what;
+  ASSERT_EQ(layer.field.values.size(), width * height) << what;
+  std::size_t differ = 0, n = 0;
+  for (double d = 0; n < layer.field.values.size() && in >> d; ++n)
+    if (d != layer.field.values[n] && differ++ < 5)
+      ADD_FAILURE() << what << ": node (" << n % width << ", " << n / width << "): reader "
+                    << fmt::format("{:.17g}", d) << ", C++ " << fmt::format("{:.17g}", layer.field.values[n]);
+  EXPECT_EQ(n, layer.field.values.size()) << what;
+  EXPECT_EQ(differ, 0U) << what << ": offsets that differ";
+}
+
+// The same reader decodes the residual layer of a version 3 file (the built-in sample face with a layer,
+// tests/data/pdef/sample_residual.pdef) whole and cut at bytes of its layer (any prefix decodes: inside
+// the header, at its end, inside the range coder's first bytes, inside the stream) to the offsets of the
+// C++ decoder, bit for bit.
+TEST(PdefSpec, AnIndependentReaderReadsTheResidualLayer) {
+  if (std::system("python3 --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3 not found";
+  const test::TempDir tmp;
+  const std::string file = slurp(golden("sample_residual.pdef"));
+  const Face whole = decode(file, "sample_residual.pdef").value();
+  ASSERT_TRUE(whole.residual && whole.residual->complete);
+  const std::size_t at = whole.residual->offset, stream = at + whole.residual->header_bytes;
+  ASSERT_EQ(stream + whole.residual->stream_bytes, file.size());
+  for (const std::size_t n :
+       {file.size(), at, at + 1, at + 7, stream, stream + 1, stream + 3, stream + 4, stream + 5, stream + 6,
+        stream + 10, stream + 37, stream + 100, stream + 255, stream + 500, file.size() - 1}) {
+    const std::string what = fmt::format("sample_residual.pdef cut to {} bytes", n);
+    const std::filesystem::path cut = tmp / "cut.pdef";
+    std::ofstream(cut, std::ios::binary) << file.substr(0, n);
+    const std::string text = independent_reading(cut, tmp / "values.txt");
+    ASSERT_FALSE(text.empty()) << what;
+    const Face face = decode(std::string_view(file).substr(0, n), "cut").value();
+    std::istringstream in(text);
+    expect_same_samples(in, face, what);
+    expect_same_residual(in, face, what);
+  }
+  // A prefix cut inside the header still has what it holds checked as it is read: both refuse an unknown
+  // transform and a varint not in its shortest form.
+  const std::string curves = file.substr(0, at);
+  for (const auto& [cut, code] : {std::pair{curves + "\x02", ErrorCode::UnsupportedFormat},
+                                  std::pair{curves + std::string("\x01\x80\x00", 3), ErrorCode::Malformed}}) {
+    const std::filesystem::path path = tmp / "hostile.pdef";
+    std::ofstream(path, std::ios::binary) << cut;
+    EXPECT_EQ(independent_reading(path, tmp / "values.txt"), "") << cut.size() << " bytes";
+    const Result<Face> face = decode(cut, "hostile");
+    ASSERT_FALSE(face) << cut.size() << " bytes";
+    EXPECT_EQ(face.error().code, code) << face.error().to_string();
   }
 }
 
