@@ -179,18 +179,6 @@ template <bool BigEndian> class Binary {
 public:
   Binary(std::string_view bytes, std::size_t offset) : bytes_(bytes), pos_(offset) {}
 
-  bool read(const std::vector<Element>& elements, const Plan& plan, Output& out) {
-    for (const Element& e : elements) {
-      if (!count_fits(e, BigEndian ? Encoding::BinaryBigEndian : Encoding::BinaryLittleEndian, bytes_.size()))
-        return false;
-      if (e.properties.empty()) continue;
-      const bool ok = &e == plan.vertex ? vertices(plan, e, out)
-                      : &e == plan.face ? faces(plan, e, out)
-                                        : skip(e);
-      if (!ok) return false;
-    }
-    return true;
-  }
   [[nodiscard]] std::size_t offset() const { return pos_; }
 
 private:
@@ -227,6 +215,7 @@ private:
   }
   [[nodiscard]] bool have(std::size_t n) const { return bytes_.size() - pos_ >= n; }
 
+public:
   bool vertices(const Plan& plan, const Element& e, Output& out) {
     std::size_t record = 0;
     for (const Value& v : plan.vertex_values)
@@ -352,6 +341,7 @@ private:
     return true;
   }
 
+private:
   std::string_view bytes_;
   std::size_t pos_;
 };
@@ -371,17 +361,6 @@ public:
   Ascii(std::string_view bytes, std::size_t offset)
       : begin_(bytes.data()), p_(bytes.data() + offset), end_(bytes.data() + bytes.size()) {}
 
-  bool read(const std::vector<Element>& elements, const Plan& plan, std::size_t file_size, Output& out) {
-    for (const Element& e : elements) {
-      if (!count_fits(e, Encoding::Ascii, file_size)) return false;
-      if (e.properties.empty()) continue;
-      const bool ok = &e == plan.vertex ? vertices(plan, e, out)
-                      : &e == plan.face ? faces(plan, e, out)
-                                        : skip(e);
-      if (!ok) return false;
-    }
-    return true;
-  }
   // The offset of the next token, or of the end.
   std::size_t next_token() {
     skip_blanks();
@@ -441,6 +420,7 @@ private:
     return took(end);
   }
 
+public:
   bool vertices(const Plan& plan, const Element& e, Output& out) {
     out.start_vertices(plan, e.count);
     std::array<float, kSlots> v{};
@@ -502,10 +482,27 @@ private:
     return true;
   }
 
+private:
   const char* begin_;
   const char* p_;
   const char* end_;
 };
+
+// Every element in the file's order, its count first checked against the file's size as the validator
+// does; `Reader` (Binary or Ascii) reads the vertices, the faces, or passes over another element.
+template <class Reader>
+bool read_elements(Reader& reader, const Header& header, const Plan& plan, std::size_t file_size,
+                   Output& out) {
+  for (const Element& e : header.elements) {
+    if (!count_fits(e, header.encoding, file_size)) return false;
+    if (e.properties.empty()) continue;
+    const bool ok = &e == plan.vertex ? reader.vertices(plan, e, out)
+                    : &e == plan.face ? reader.faces(plan, e, out)
+                                      : reader.skip(e);
+    if (!ok) return false;
+  }
+  return true;
+}
 
 } // namespace
 
@@ -517,7 +514,7 @@ std::optional<DirectRead> read_direct(const Header& header, std::string_view byt
   DirectRead result;
   if (header.encoding == Encoding::Ascii) {
     Ascii ascii(bytes, header.data_offset);
-    if (!ascii.read(header.elements, *plan, bytes.size(), out)) return std::nullopt;
+    if (!read_elements(ascii, header, *plan, bytes.size(), out)) return std::nullopt;
     if (const std::size_t next = ascii.next_token(); next < bytes.size()) {
       const auto lines = std::count(bytes.begin() + static_cast<std::ptrdiff_t>(header.data_offset),
                                     bytes.begin() + static_cast<std::ptrdiff_t>(next), '\n');
@@ -525,7 +522,7 @@ std::optional<DirectRead> read_direct(const Header& header, std::string_view byt
     }
   } else {
     auto run = [&]<bool BigEndian>(Binary<BigEndian> binary) -> bool {
-      if (!binary.read(header.elements, *plan, out)) return false;
+      if (!read_elements(binary, header, *plan, bytes.size(), out)) return false;
       result.data_end = binary.offset();
       return true;
     };
