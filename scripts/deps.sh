@@ -5,7 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev libdraco-dev draco
-  libtinyobjloader-dev libfast-float-dev libstb-dev nlohmann-json3-dev libnanoflann-dev
+  libfast-float-dev libstb-dev nlohmann-json3-dev libnanoflann-dev
   libmeshoptimizer-dev zlib1g-dev libzstd-dev libutfcpp-dev
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   # The Python module (python/): pybind11, numpy; its tests and Dask batch: pytest, Dask distributed.

@@ -1,9 +1,8 @@
-// OBJ through tinyobjloader (thread-safe: no global state), after a validator. tinyobjloader reads a word,
-// "nan", "1.5.5" or a missing coordinate as a number without complaint, passes relative indices that reach
-// before the first vertex, fails on a comment after a face, and counts a face's corners in an unsigned
-// char (third_party_notes/tinyobjloader.md). The validator checks every statement we read and gives its
-// line and column, and keeps every value it parsed (exactly, with fast_float: tinyobjloader reads "0e801"
-// as a NaN); tinyobjloader then reads the faces.
+// OBJ in one pass over the bytes: every statement we read checked, with its line and column, as it is
+// read; numbers parsed exactly (fast_float, then rounded to float), faces' corners resolved to indices
+// (relative ones against the counts so far). This was a validator in front of tinyobjloader, which then
+// read the faces; the faces are now the validator's own, the same ones (third_party_notes/tinyobjloader.md
+// says why tinyobjloader went).
 
 #include "pdeface/obj/obj.hpp"
 
@@ -11,12 +10,12 @@
 #include "pdeface/text/scanner.hpp"
 
 #include <fmt/format.h>
-#include <tiny_obj_loader.h>
 
 #include <algorithm>
 #include <array>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -27,12 +26,17 @@ using text::Scanner;
 using text::Token;
 
 constexpr std::size_t kMaxIgnoredNamed = 8; // kinds of statement a note names
-constexpr std::size_t kMaxCorners = 255;    // tinyobjloader stores a face's corner count in an unsigned char
+constexpr std::size_t kMaxCorners = 255;    // as tinyobjloader read them (a corner count in an unsigned char)
 
 enum Kind { Vertex, Texcoord, Normal };
 constexpr std::array<std::string_view, 3> kKindNames{"vertex", "texture coordinate", "normal"};
 
-constexpr std::array<float, 3> kWhite{1.0F, 1.0F, 1.0F}; // a vertex without r g b, as tinyobjloader has it
+constexpr std::array<float, 3> kWhite{1.0F, 1.0F, 1.0F}; // a vertex without r g b
+
+// One face corner: 0-based indices of its vertex, texture coordinate and normal (-1: none).
+struct Corner {
+  std::int32_t v = -1, vt = -1, vn = -1;
+};
 
 // What the validator learnt about the document.
 struct Survey {
@@ -40,7 +44,9 @@ struct Survey {
   std::vector<float> positions, colors, texcoords, normals;
   std::array<std::int64_t, 3> counts{}; // v, vt, vn statements
   std::size_t colored = 0;              // v statements with r g b
-  std::size_t short_faces = 0;          // faces with fewer than 3 corners (tinyobjloader skips them)
+  std::size_t short_faces = 0;          // faces with fewer than 3 corners (skipped)
+  std::vector<Corner> corners;          // of the faces of 3 or more corners, in order
+  std::vector<std::uint8_t> face_sizes; // their corner counts
   Units units = Units::Unknown;
   std::string name;                 // of the first 'o'
   std::vector<std::string> ignored; // the first kMaxIgnoredNamed kinds of statement not read
@@ -49,19 +55,24 @@ struct Survey {
 
 class Validator {
 public:
-  Validator(std::string& text, std::string_view source) : text_(text), source_(source) {}
+  Validator(std::string_view text, std::string_view source) : text_(text), source_(source) {}
 
-  // Checks every statement; blanks comments in `text` (tinyobjloader fails on "f 1 2 3 # note").
+  // Reads and checks every statement.
   Result<Survey> run() {
-    if (const std::size_t nul = text_.find('\0'); nul != std::string::npos) {
-      Scanner scan(std::string_view(text_).substr(0, nul));
+    if (const void* found = std::memchr(text_.data(), '\0', text_.size()); found != nullptr) {
+      const auto nul = static_cast<std::size_t>(static_cast<const char*>(found) - text_.data());
+      Scanner scan(text_.substr(0, nul));
       while (!scan.next().empty()) {
       }
       return fail(ErrorCode::Malformed, scan.here(), "a NUL byte: this is binary data, not an OBJ text");
     }
     std::size_t begin = 0;
+    next_hash_ = find('#', 0);
     for (std::uint64_t line = 1; begin < text_.size(); ++line) {
-      const std::size_t end = std::min(text_.find('\n', begin), text_.size());
+      const void* newline = std::memchr(text_.data() + begin, '\n', text_.size() - begin);
+      const std::size_t end = newline != nullptr
+                                  ? static_cast<std::size_t>(static_cast<const char*>(newline) - text_.data())
+                                  : text_.size();
       if (Result<void> ok = statement(begin, end, line); !ok) return std::move(ok).error();
       begin = end + 1;
     }
@@ -83,25 +94,42 @@ private:
     return make_error(code, std::move(message), std::string(source_), where);
   }
 
-  Result<void> statement(std::size_t begin, std::size_t end, std::uint64_t line) {
-    if (const std::size_t found = std::string_view(text_).substr(begin, end - begin).find('#');
-        found != std::string_view::npos) {
-      const std::size_t hash = begin + found;
-      if (auto units = text::units_from_comment(std::string_view(text_).substr(hash + 1, end - hash - 1)))
+  // The first `c` at or after `from`, or the end.
+  [[nodiscard]] std::size_t find(char c, std::size_t from) const {
+    const void* found = std::memchr(text_.data() + from, c, text_.size() - from);
+    return found != nullptr ? static_cast<std::size_t>(static_cast<const char*>(found) - text_.data())
+                            : text_.size();
+  }
+
+  // A statement ends at its line's end or at a '#', where a comment starts.
+  Result<void> statement(std::size_t begin, std::size_t line_end, std::uint64_t line) {
+    std::size_t end = line_end;
+    if (next_hash_ < begin) next_hash_ = find('#', begin); // one search for the whole text when no '#'
+    if (next_hash_ < line_end) {
+      const std::size_t hash = next_hash_;
+      if (auto units = text::units_from_comment(text_.substr(hash + 1, line_end - hash - 1)))
         survey_.units = *units;
-      std::fill(text_.begin() + static_cast<std::ptrdiff_t>(hash),
-                text_.begin() + static_cast<std::ptrdiff_t>(end), ' ');
+      end = hash;
     }
-    Scanner scan(std::string_view(text_).substr(0, end), begin, line);
+    Scanner scan(text_.substr(0, end), begin, line);
     const Token keyword = scan.next_on_line();
     const std::string_view word = keyword.text;
-    if (word == "v") return vertex(scan, keyword);
-    if (word == "vt") return counted(numbers(scan, keyword, 1, 3, Texcoord));
-    if (word == "vn") return counted(numbers(scan, keyword, 3, 3, Normal));
-    if (word == "f") return face(scan, keyword);
+    const char* rest = text_.data() + scan.offset();
+    const char* stop = text_.data() + end;
+    if (word == "v") return quick_numbers(rest, stop, 3, 6, Vertex) ? Result<void>() : vertex(scan, keyword);
+    if (word == "vt")
+      return quick_numbers(rest, stop, 1, 3, Texcoord) ? Result<void>()
+                                                       : counted(numbers(scan, keyword, 1, 3, Texcoord));
+    if (word == "vn")
+      return quick_numbers(rest, stop, 3, 3, Normal) ? Result<void>()
+                                                     : counted(numbers(scan, keyword, 3, 3, Normal));
+    if (word == "f") return quick_face(rest, stop, begin, line) ? Result<void>() : face(scan, keyword);
     if (word == "o" && survey_.name.empty()) {
       const Token name = scan.next_on_line();
-      survey_.name = std::string_view(text_).substr(name.offset, end - name.offset);
+      survey_.name = text_.substr(name.offset, end - name.offset);
+      // CR, VT and FF inside a name are blanks like the others.
+      std::ranges::replace_if(
+          survey_.name, [](char c) { return c == '\r' || c == '\v' || c == '\f'; }, ' ');
       while (!survey_.name.empty() && std::isspace(static_cast<unsigned char>(survey_.name.back())))
         survey_.name.pop_back();
     }
@@ -119,6 +147,114 @@ private:
   static Result<void> counted(Result<std::size_t> result) {
     if (!result) return std::move(result).error();
     return {};
+  }
+
+  static bool blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+  // The common statements without a Scanner: `numbers` and `face` for what they accept without a message
+  // (the same values, kept the same way); false, having changed nothing, for anything else, which the
+  // slow path then reads or refuses with its message.
+  bool quick_numbers(const char* p, const char* end, std::size_t least, std::size_t most, int kind) {
+    std::array<float, 6> values{};
+    std::size_t count = 0;
+    for (;;) {
+      while (p != end && blank(*p))
+        ++p;
+      if (p == end) break;
+      if (count == values.size()) return false;
+      const char* from = (*p == '+' && p + 1 != end && p[1] != '-') ? p + 1 : p;
+      double v = 0;
+      const auto [next, ec] = fast_float::from_chars(from, end, v);
+      if (ec != std::errc() || (next != end && !blank(*next))) return false;
+      if (!std::isfinite(v) || std::abs(v) > FLT_MAX) return false;
+      values[count++] = static_cast<float>(v);
+      p = next;
+    }
+    if (count < least || count > most || (kind == Vertex && count == 5)) return false;
+    keep(values, count, kind);
+    return true;
+  }
+
+  // An index of up to 9 digits, optionally negative.
+  static bool quick_index(const char*& p, const char* end, std::int64_t& value) {
+    const bool negative = p != end && *p == '-';
+    if (negative) ++p;
+    const char* digits = p;
+    std::int64_t v = 0;
+    while (p != end && static_cast<unsigned>(*p - '0') < 10U && p - digits < 10)
+      v = v * 10 + (*p++ - '0');
+    if (p == digits || p - digits >= 10 || v == 0) return false; // none, too long, or 0 (an error)
+    value = negative ? -v : v;
+    return true;
+  }
+
+  bool quick_face(const char* p, const char* end, std::size_t line_begin, std::uint64_t line) {
+    const std::size_t first = survey_.corners.size();
+    std::array<Highest, 3> highest = highest_;
+    std::size_t corners = 0;
+    for (;; ++corners) {
+      while (p != end && blank(*p))
+        ++p;
+      if (p == end) break;
+      const char* token = p;
+      std::array<std::int64_t, 3> index{}; // 0: absent
+      bool ok = quick_index(p, end, index[0]);
+      if (ok && p != end && *p == '/') {
+        ++p;
+        if (p != end && *p == '/') {
+          ++p;
+          ok = quick_index(p, end, index[2]);
+        } else {
+          ok = quick_index(p, end, index[1]);
+          if (ok && p != end && *p == '/') {
+            ++p;
+            ok = quick_index(p, end, index[2]);
+          }
+        }
+      }
+      if (!ok || (p != end && !blank(*p))) {
+        survey_.corners.resize(first);
+        return false;
+      }
+      Corner& resolved = survey_.corners.emplace_back();
+      for (int kind : {Vertex, Texcoord, Normal}) {
+        const std::int64_t i = index[kind];
+        if (i == 0) continue;
+        if (i < 0 && -i > survey_.counts[kind]) {
+          survey_.corners.resize(first);
+          return false;
+        }
+        if (i > highest[kind].index)
+          highest[kind] = {
+              i, Location::at_line(line, static_cast<std::uint64_t>(token - text_.data()) - line_begin + 1)};
+        (kind == Vertex     ? resolved.v
+         : kind == Texcoord ? resolved.vt
+                            : resolved.vn) =
+            static_cast<std::int32_t>(i > 0 ? i - 1 : survey_.counts[kind] + i);
+      }
+    }
+    if (corners < 3 || corners > kMaxCorners) {
+      survey_.corners.resize(first);
+      return false;
+    }
+    survey_.face_sizes.push_back(static_cast<std::uint8_t>(corners));
+    highest_ = highest;
+    return true;
+  }
+
+  // A v, vt or vn statement's `count` values, which have passed every check, kept.
+  void keep(const std::array<float, 6>& values, std::size_t count, int kind) {
+    ++survey_.counts[kind];
+    std::vector<float>& out = kind == Vertex   ? survey_.positions
+                              : kind == Normal ? survey_.normals
+                                               : survey_.texcoords;
+    const std::size_t width = kind == Texcoord ? 2 : 3; // u v (v = 0 when absent), or x y z
+    out.insert(out.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(width));
+    if (kind == Vertex) { // r g b, or white
+      survey_.colors.insert(survey_.colors.end(), count == 6 ? values.begin() + 3 : kWhite.begin(),
+                            count == 6 ? values.end() : kWhite.end());
+      if (count == 6) ++survey_.colored;
+    }
   }
 
   // The numbers after `keyword` up to the end of the line: between `least` and `most` of them, each finite
@@ -143,15 +279,8 @@ private:
                   least == most
                       ? fmt::format("{} needs {} numbers, found {}", keyword.text, least, count)
                       : fmt::format("{} needs {} to {} numbers, found {}", keyword.text, least, most, count));
-    ++survey_.counts[kind];
-    std::vector<float>& out = kind == Vertex   ? survey_.positions
-                              : kind == Normal ? survey_.normals
-                                               : survey_.texcoords;
-    const std::size_t width = kind == Texcoord ? 2 : 3; // u v (v = 0 when absent), or x y z
-    out.insert(out.end(), values.begin(), values.begin() + static_cast<std::ptrdiff_t>(width));
-    if (kind == Vertex) // r g b, or white
-      survey_.colors.insert(survey_.colors.end(), count == 6 ? values.begin() + 3 : kWhite.begin(),
-                            count == 6 ? values.end() : kWhite.end());
+    if (kind == Vertex && count == 5) return count; // refused by `vertex`
+    keep(values, count, kind);
     return count;
   }
 
@@ -162,18 +291,23 @@ private:
     if (*count == 5)
       return fail(ErrorCode::Malformed, keyword.location(),
                   "v needs x y z, x y z w or x y z r g b; found 5 numbers");
-    if (*count == 6) ++survey_.colored;
     return {};
   }
 
   Result<void> face(Scanner& scan, const Token& keyword) {
     std::size_t corners = 0;
+    const std::size_t first = survey_.corners.size();
     for (Token t = scan.next_on_line(); !t.empty(); t = scan.next_on_line(), ++corners)
       if (Result<void> ok = corner(t); !ok) return ok;
     if (corners > kMaxCorners)
       return fail(ErrorCode::UnsupportedFormat, keyword.location(),
                   fmt::format("a face of {} corners: tinyobjloader reads at most {}", corners, kMaxCorners));
-    if (corners < 3) ++survey_.short_faces;
+    if (corners < 3) {
+      ++survey_.short_faces;
+      survey_.corners.resize(first);
+    } else {
+      survey_.face_sizes.push_back(static_cast<std::uint8_t>(corners));
+    }
     return {};
   }
 
@@ -190,6 +324,7 @@ private:
     }
     if (parts[0].empty() || (n == 1 && parts[1].empty()) || (n == 2 && parts[2].empty()))
       return bad_corner(t);
+    Corner& resolved = survey_.corners.emplace_back();
     for (int kind : {Vertex, Texcoord, Normal}) {
       if (parts[kind].empty()) continue;
       const std::optional<std::int64_t> index = text::parse_integer(parts[kind]);
@@ -201,6 +336,12 @@ private:
                     fmt::format("relative {} index {} reaches before the first of the {} so far",
                                 kKindNames[kind], *index, survey_.counts[kind]));
       if (*index > highest_[kind].index) highest_[kind] = {*index, t.location()};
+      // From 1, or from the end of the list so far; in range once every index is checked (`run`).
+      const std::int64_t zero_based = *index > 0 ? *index - 1 : survey_.counts[kind] + *index;
+      (kind == Vertex     ? resolved.v
+       : kind == Texcoord ? resolved.vt
+                          : resolved.vn) =
+          static_cast<std::int32_t>(std::clamp<std::int64_t>(zero_based, -1, INT32_MAX));
     }
     return {};
   }
@@ -210,8 +351,9 @@ private:
                 fmt::format("expected v, v/vt, v//vn or v/vt/vn, found '{}'", excerpt(t.text)));
   }
 
-  std::string& text_;
+  std::string_view text_;
   std::string_view source_;
+  std::size_t next_hash_ = 0; // the first '#' not before the current line
   Survey survey_;
   std::array<Highest, 3> highest_{};
 };
@@ -219,7 +361,7 @@ private:
 // One value per vertex from per-corner indices, if every corner of a vertex gives the same value.
 class CornerAttribute {
 public:
-  CornerAttribute(const std::vector<tinyobj::real_t>& values, int width, std::size_t vertices)
+  CornerAttribute(const std::vector<float>& values, int width, std::size_t vertices)
       : values_(values), width_(width), slot_(vertices, -1) {}
 
   // Vertex i takes value i: for point clouds with as many vn (or vt) as v.
@@ -265,7 +407,7 @@ private:
       if (values_[index(a, k)] != values_[index(b, k)]) return false;
     return true;
   }
-  const std::vector<tinyobj::real_t>& values_;
+  const std::vector<float>& values_;
   int width_;
   std::vector<int> slot_;
   std::size_t conflicts_ = 0;
@@ -275,61 +417,38 @@ private:
 } // namespace
 
 Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
-  std::string text(bytes);
-  // tinyobjloader's blanks are space and tab, and it ends a line at CR: the other blanks the validator
-  // knows (CR, VT, FF) become spaces, so that both read the same statements ("v\v1 0 0" is no vertex to
-  // tinyobjloader). Lines and columns do not move.
-  std::ranges::replace_if(
-      text, [](char c) { return c == '\r' || c == '\v' || c == '\f'; }, ' ');
-  Result<Survey> survey = Validator(text, source).run();
+  Result<Survey> survey = Validator(bytes, source).run();
   if (!survey) return std::move(survey).error();
   if (survey->counts[Vertex] == 0)
     return make_error(ErrorCode::Empty, "no vertices (v statements) in the file", std::string(source));
 
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false; // we fan-triangulate, as for every other format
-  config.vertex_color = true;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(text, /*mtl_text=*/"", config)) { // materials: never opened
-    std::string message = reader.Error();
-    std::ranges::replace(message, '\n', ' ');
-    return make_error(ErrorCode::Malformed, fmt::format("tinyobjloader: {}", excerpt(message, 200)),
-                      std::string(source));
-  }
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const std::size_t vertices = survey->positions.size() / 3;
-  // tinyobjloader gives the faces; the values are the validator's, read exactly. Both saw the same v, vt
-  // and vn statements, so the faces' indices refer to them.
-  if (attrib.vertices.size() != survey->positions.size() || attrib.normals.size() != survey->normals.size() ||
-      attrib.texcoords.size() != survey->texcoords.size())
-    return make_error(ErrorCode::Malformed,
-                      fmt::format("tinyobjloader read {} vertices where the file has {}",
-                                  attrib.vertices.size() / 3, vertices),
-                      std::string(source));
   const std::vector<float>& xyz = survey->positions;
   Mesh mesh;
   mesh.name = survey->name;
   mesh.units = survey->units;
-  mesh.positions.reserve(vertices);
+  mesh.positions.resize(vertices);
   for (std::size_t i = 0; i < vertices; ++i)
-    mesh.positions.emplace_back(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
+    mesh.positions[i] = Vec3(xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]);
 
   CornerAttribute normals(survey->normals, 3, vertices);
   CornerAttribute texcoords(survey->texcoords, 2, vertices);
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    std::size_t first = 0;
-    for (const unsigned char corners : shape.mesh.num_face_vertices) {
-      const tinyobj::index_t* c = &shape.mesh.indices[first];
-      for (std::size_t k = 0; k < corners; ++k) {
-        normals.add(c[k].vertex_index, c[k].normal_index);
-        texcoords.add(c[k].vertex_index, c[k].texcoord_index);
-      }
-      for (std::size_t k = 1; k + 1 < corners; ++k)
-        mesh.triangles.push_back({static_cast<std::uint32_t>(c[0].vertex_index),
-                                  static_cast<std::uint32_t>(c[k].vertex_index),
-                                  static_cast<std::uint32_t>(c[k + 1].vertex_index)});
-      first += corners;
+  const bool with_normals = survey->counts[Normal] != 0;
+  const bool with_texcoords = survey->counts[Texcoord] != 0;
+  std::size_t triangles = 0;
+  for (const std::uint8_t corners : survey->face_sizes)
+    triangles += corners - 2U;
+  mesh.triangles.reserve(triangles);
+  const Corner* c = survey->corners.data();
+  for (const std::uint8_t corners : survey->face_sizes) {
+    for (std::size_t k = 0; k < corners; ++k) {
+      if (with_normals) normals.add(c[k].v, c[k].vn);
+      if (with_texcoords) texcoords.add(c[k].v, c[k].vt);
     }
+    for (std::size_t k = 1; k + 1 < corners; ++k)
+      mesh.triangles.push_back({static_cast<std::uint32_t>(c[0].v), static_cast<std::uint32_t>(c[k].v),
+                                static_cast<std::uint32_t>(c[k + 1].v)});
+    c += corners;
   }
 
   auto note = [&](std::string message) {

@@ -12,6 +12,21 @@ namespace pdeface::ply {
 Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
   Result<detail::Header> header = detail::parse_header(bytes, source, notes);
   if (!header) return std::move(header).error();
+  if (std::optional<detail::DirectRead> direct = detail::read_direct(*header, bytes)) {
+    if (notes && header->encoding != detail::Encoding::Ascii && direct->data_end < bytes.size())
+      notes->push_back(fmt::format("{}: {} bytes after the last element ignored (from byte {})", source,
+                                   bytes.size() - direct->data_end, direct->data_end));
+    if (notes && direct->trailing_line)
+      notes->push_back(
+          fmt::format("{}:{}: data after the last element ignored", source, *direct->trailing_line));
+    if (notes && direct->short_faces != 0)
+      notes->push_back(
+          fmt::format("{}: {} faces with fewer than 3 corners skipped", source, direct->short_faces));
+    if (direct->mesh.positions.empty())
+      return make_error(ErrorCode::Empty, "no vertices in the file", std::string(source));
+    direct->mesh.units = header->units;
+    return std::move(direct->mesh);
+  }
   Result<detail::DataRanges> data = detail::check_data(*header, bytes, source, notes);
   if (!data) return std::move(data).error();
   Result<Mesh> mesh =

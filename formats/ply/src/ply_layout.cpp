@@ -65,6 +65,8 @@ std::string_view name_of(Scalar type) {
   return "?";
 }
 
+} // namespace
+
 std::size_t size_of(Scalar type) {
   switch (type) {
   case Scalar::Int8:
@@ -78,6 +80,8 @@ std::size_t size_of(Scalar type) {
   }
   return 0;
 }
+
+namespace {
 
 bool is_integer(Scalar type) { return type != Scalar::Float32 && type != Scalar::Float64; }
 
@@ -502,14 +506,20 @@ private:
   std::string_view source_;
 };
 
-// Fails fast, before reading anything, on a count no file of this size could hold.
-Result<void> check_count_fits(const Element& e, Encoding encoding, std::size_t file_size,
-                              std::string_view source) {
-  std::uint64_t min_bytes = 0; // the smallest possible record: empty lists, one-character ASCII values
+// The smallest possible record: empty lists, one-character ASCII values.
+std::uint64_t min_record_bytes(const Element& e, Encoding encoding) {
+  std::uint64_t min_bytes = 0;
   for (const Property& p : e.properties)
     min_bytes += encoding == Encoding::Ascii ? 2 : size_of(p.count_type ? *p.count_type : p.type);
   if (encoding == Encoding::Ascii && min_bytes > 0) --min_bytes; // no blank needed after the very last value
-  if (e.count * min_bytes <= file_size) return {};
+  return min_bytes;
+}
+
+// Fails fast, before reading anything, on a count no file of this size could hold.
+Result<void> check_count_fits(const Element& e, Encoding encoding, std::size_t file_size,
+                              std::string_view source) {
+  if (count_fits(e, encoding, file_size)) return {};
+  const std::uint64_t min_bytes = min_record_bytes(e, encoding);
   return make_error(
       ErrorCode::CountTooLarge,
       fmt::format("element {} declares {} items of at least {} bytes each ({} bytes), but the whole "
@@ -567,6 +577,10 @@ Result<DataRanges> walk(const Header& header, Values values, std::string_view by
 }
 
 } // namespace
+
+bool count_fits(const Element& e, Encoding encoding, std::size_t file_size) {
+  return e.count * min_record_bytes(e, encoding) <= file_size;
+}
 
 Result<Header> parse_header(std::string_view bytes, std::string_view source, Notes* notes) {
   Result<Header> header = HeaderParser(bytes, source).parse();

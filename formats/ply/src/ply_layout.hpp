@@ -1,9 +1,10 @@
 #pragma once
 // The PLY header, parsed exactly, and a check of the data against it.
 //
-// This is a validator, not a second reader: it builds no mesh. It exists because OpenMesh's PLY reader
-// hangs on a header without end_header, crashes on a property before any element, allocates without
-// bound on a lying count, and reads words, "nan" and missing data as zeros without saying where
+// The validator (`check_data`) builds no mesh; `read_direct` reads the usual layouts in one pass instead,
+// and gives up where the validator would refuse. It exists because OpenMesh's PLY reader hangs on a header
+// without end_header, crashes on a property before any element, allocates without bound on a lying
+// count, and reads words, "nan" and missing data as zeros without saying where
 // (third_party_notes/openmesh.md). Parsing the header and walking the data once gives exact errors: the
 // header line and column, the byte offset in binary data, the line and column in ASCII data. It also
 // hands OpenMesh only what OpenMesh reads correctly: a canonical header of the vertex and face elements,
@@ -56,6 +57,13 @@ struct Header {
   std::uint64_t data_line = 0;  //!< line on which the data starts (ASCII)
 };
 
+//! The bytes of one binary value of `type`.
+[[nodiscard]] std::size_t size_of(Scalar type);
+
+//! Whether `e.count` records of the smallest size its properties allow (empty lists, one-character ASCII
+//! values) fit in `file_size` bytes: a count beyond is refused before anything is read or allocated.
+[[nodiscard]] bool count_fits(const Element& e, Encoding encoding, std::size_t file_size);
+
 //! Parses the header and checks that OpenMesh reads what it declares (property types, lists, a vertex
 //! element with x, y, z). Notes what will be ignored.
 [[nodiscard]] Result<Header> parse_header(std::string_view bytes, std::string_view source, Notes* notes);
@@ -70,6 +78,22 @@ struct DataRanges {
 //! indices in range. Errors carry the byte offset (binary) or line and column (ASCII).
 [[nodiscard]] Result<DataRanges> check_data(const Header& header, std::string_view bytes,
                                             std::string_view source, Notes* notes);
+
+//! The data read straight into a mesh, for the layouts whose reading through OpenMesh is known value for
+//! value: float x y z [nx ny nz] [u v | s t | texture_u texture_v], uchar red green blue [alpha], other
+//! vertex properties of any type; faces' vertex_indices with a uchar or int length and (u)char or (u)int
+//! entries, other face properties (not colours) of any type; any other elements. The same mesh as
+//! OpenMesh gives, in one pass over the bytes.
+struct DirectRead {
+  Mesh mesh;
+  std::size_t short_faces = 0;                //!< fewer than three corners: skipped
+  std::size_t data_end = 0;                   //!< binary: the first byte after the last element
+  std::optional<std::uint64_t> trailing_line; //!< ASCII: the line of data after the last element
+};
+
+//! nullopt when the layout is not one of those, or at the first value the validator (`check_data`)
+//! refuses: it then names the fault. Checks everything `check_data` checks: a mesh means it would pass.
+[[nodiscard]] std::optional<DirectRead> read_direct(const Header& header, std::string_view bytes);
 
 //! What OpenMesh reads: a canonical header (vertex then face element, "\n" line ends, no comments,
 //! texture_u/texture_v renamed to the u/v OpenMesh knows) followed by the two elements' data.

@@ -1,6 +1,6 @@
 #pragma once
 //! \file
-//! Wavefront OBJ reader (through tinyobjloader) and writer.
+//! Wavefront OBJ reader and writer (our own code, one pass over the bytes).
 
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
@@ -12,9 +12,9 @@ namespace pdeface::obj {
 
 //! Parses an OBJ document: `v` (optionally with `r g b`), `vt`, `vn`, and `f` in every corner form
 //! (`v`, `v/vt`, `v//vn`, `v/vt/vn`, negative = relative), polygons of up to 255 corners fan-triangulated
-//! from their first corner. Values are float32 precision (tinyobjloader). Per-corner texture coordinates
-//! and normals are kept when every corner of a vertex gives it the same value, else dropped with a note
-//! (vertices are never split). Units come from a `# units mm` comment, the name from the first `o`.
+//! from their first corner. Values are float32 precision (parsed exactly, then rounded). Per-corner texture
+//! coordinates and normals are kept when every corner of a vertex gives it the same value, else dropped with
+//! a note (vertices are never split). Units come from a `# units mm` comment, the name from the first `o`.
 //! Material libraries are never opened. Errors carry the line and column of the offending statement.
 [[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr);
 

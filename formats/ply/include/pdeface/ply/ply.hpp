@@ -1,12 +1,13 @@
 #pragma once
 //! \file
-//! PLY (ASCII and binary, with or without faces) read and written through OpenMesh's IO; OFF and STL, which
-//! go through it too, are `pdeface/off/off.hpp` and `pdeface/stl/stl.hpp`.
+//! PLY (ASCII and binary, with or without faces), read by our own code for the usual layouts (float
+//! coordinates, uchar colours, int or uint face indices) and through OpenMesh's IO for the others, written
+//! through OpenMesh's IO; OFF and STL, which use it too, are `pdeface/off/off.hpp` and `pdeface/stl/stl.hpp`.
 //!
-//! Every input is checked by our own validator before OpenMesh sees it (OpenMesh hangs, crashes or misreads
+//! Every input is checked by our own code before any of it is used (OpenMesh hangs, crashes or misreads
 //! silently on bad data); errors give the header line and column, the byte offset in binary data, or the
 //! line and column in text. OpenMesh calls are serialised by one mutex (shared with OFF and STL): the reader
-//! is safe to call from any thread, but the part inside OpenMesh runs one at a time. Nothing is ever printed.
+//! is safe to call from any thread; only the layouts OpenMesh reads run one at a time. Nothing is printed.
 
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
