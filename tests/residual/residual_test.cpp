@@ -23,7 +23,7 @@ struct Scan {
   std::optional<metrics::FaceYardstick> yardstick;
 };
 
-// Computed once per process: the suites using it run in one process each (tests/CMakeLists.txt).
+// Computed once per process.
 const Scan& f18(const std::filesystem::path& path) {
   static const Scan s = [&] {
     Scan out;
