@@ -317,5 +317,27 @@ TEST(PdefHostile, RandomDamageNeverCrashes) {
   std::printf("random damage: %zu decoded, %zu refused\n", decoded, refused);
 }
 
+// Found by pdef_fuzz: a lossy file whose heights' residuals on an anchor curve are far from what the
+// encoder writes (a table the encoder would round otherwise). Encoding the decoded face again cannot keep
+// its grid (the anchors' heights fitted again differ); it is encoded afresh, within the error asked for.
+TEST(PdefHostile, HeightsTheEncoderNeverWritesAreEncodedAgainWithinTheError) {
+  const std::string file = test::slurp(test::fixtures() / "pdef" / "fuzz_heights_off_grid.pdef");
+  const Result<Face> face = decode(file, "fuzz_heights_off_grid.pdef");
+  ASSERT_TRUE(face.ok()) << face.error().to_string();
+  ASSERT_GT(face->storage.heights_stride, 0U);
+  const double error = face->storage.step_mm;
+  const Result<Encoded> again = encode(*face, {.max_error_mm = error});
+  ASSERT_TRUE(again.ok()) << again.error().to_string();
+  const Result<Face> back = decode(again->bytes, "again");
+  ASSERT_TRUE(back.ok()) << back.error().to_string();
+  ASSERT_EQ(back->curve_count(), face->curve_count());
+  EXPECT_EQ(back->filled, face->filled);
+  for (std::size_t j = 0; j < face->curve_count(); ++j) {
+    EXPECT_LE(std::abs(back->planes[j] - face->planes[j]), error) << "plane " << j;
+    EXPECT_LE((back->curves.samples[j] - face->curves.samples[j]).rowwise().norm().maxCoeff(), error)
+        << "curve " << j;
+  }
+}
+
 } // namespace
 } // namespace pdeface::pdef
