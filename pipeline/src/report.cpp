@@ -252,6 +252,12 @@ std::vector<Task> decimation_tasks(const std::vector<Task>& tasks, const Mesh& g
   std::vector<std::pair<std::size_t, std::string>> budgets;
   for (std::size_t budget : options.budgets)
     budgets.emplace_back(budget, fmt::format("decimate+draco {} B", budget));
+  // The whole geometry's Draco bytes at each bits, where a Draco row has them (same geometry and level).
+  std::map<int, std::size_t> whole_bytes;
+  for (const Task& t : tasks)
+    if (t.variant.method == Method::Draco && t.variant.failure.empty() && t.variant.bytes > 0 &&
+        t.variant.bits > 0)
+      whole_bytes.emplace(t.variant.bits, t.variant.bytes);
   std::string heat_label;
   if (options.budgets_at_pde)
     for (const Task& t : tasks)
@@ -268,11 +274,13 @@ std::vector<Task> decimation_tasks(const std::vector<Task>& tasks, const Mesh& g
                                      .extension = ".drc",
                                      .budget = budget,
                                      .lossless = false},
-                         .make = [&, budget]() -> Result<Encoded> {
+                         .make = [&, budget, whole_bytes]() -> Result<Encoded> {
                            Result<detail::Decimated> d = detail::decimate_to_budget(
-                               geometry, budget, options, [&](const Mesh& decoded) {
+                               geometry, budget, options,
+                               [&](const Mesh& decoded) {
                                  return measurer.yardstick().quick_mask_mean(measurer.in_canonical(decoded));
-                               });
+                               },
+                               whole_bytes);
                            if (!d) return std::move(d).error();
                            return std::move(d->encoded);
                          },

@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -45,10 +46,14 @@ struct Encoded {
 //! than the scan has), vertices on no triangle dropped.
 [[nodiscard]] Mesh simplify(const Mesh& geometry, std::size_t target, bool lock_border);
 
-//! Decimate + Draco within `budget` bytes: for each of `options.decimate_bits`, the most triangles whose
-//! Draco bytes fit in [budget × (1 − slack), budget]; of those, the one `error` (of the decoded mesh, in
-//! the scan's frame) finds best. Errors: `InvalidArgument` for a point cloud or a budget too small for
-//! any mesh.
+//! Decimate + Draco within `budget` bytes: for each of `options.decimate_bits`, a triangle count whose
+//! Draco bytes fit in [budget × (1 − slack), budget] (found by secant steps on log bytes against log
+//! triangles, each a simplification and an encoding; the first at the next bits predicted from the last
+//! fitting mesh encoded at those bits); of those, the one `error` (of the decoded mesh, in the scan's
+//! frame) finds best, from the fewest bits up until it has grown twice in a row. `whole_bytes`: the whole
+//! `geometry`'s Draco bytes at some bits, when known (the Draco rows): bits at which it is under the budget's
+//! range are skipped, and the others start from it. Errors: `InvalidArgument` for a point cloud or a
+//! budget too small for any mesh.
 struct Decimated {
   Encoded encoded;
   int bits = 0;
@@ -56,7 +61,8 @@ struct Decimated {
 };
 [[nodiscard]] Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget,
                                                    const CompareOptions& options,
-                                                   const std::function<double(const Mesh&)>& error);
+                                                   const std::function<double(const Mesh&)>& error,
+                                                   const std::map<int, std::size_t>& whole_bytes = {});
 
 //! The `.pdef` file of the aligned scan sliced at `ratio` (`encode_aligned`: lossy within the default error,
 //! or lossless; `scheme`), and what a reader makes of its bytes: `pdef::decode`, then the surface solved and
