@@ -171,10 +171,10 @@ private:
   const std::function<void(std::string_view)>& tick_;
 };
 
-// Step 3's tasks: raw files (and gzipped), Draco at each quantisation, and the PDE at each ratio. The
-// tasks refer to `geometry`, `scan`, `alignment` and `options`, which must outlive them.
-std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const align::Alignment& alignment,
-                                 std::string_view name, const CompareOptions& options) {
+// Step 3's tasks: raw files (and gzipped), Draco at each quantisation, and the PDE at each ratio (what the
+// `.pdef` files share made once, `PdeFiles`). The tasks refer to `geometry`, `pde` and `options`, which must
+// outlive them.
+std::vector<Task> encoding_tasks(const Mesh& geometry, detail::PdeFiles& pde, const CompareOptions& options) {
   std::vector<Task> tasks;
   for (bool gzipped : {false, true})
     for (formats::Format f : kRawFormats) {
@@ -203,10 +203,7 @@ std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const a
                        .extension = ".pdef",
                        .ratio = ratio,
                        .lossless = lossless},
-           .make =
-               [&, ratio, lossless, name] {
-                 return detail::encode_pde(scan, alignment, ratio, lossless, options.scheme, name);
-               },
+           .make = [&pde, ratio, lossless] { return pde.make(ratio, lossless); },
            .keep_mesh = !lossless && std::abs(ratio - options.heat_ratio) < 1e-9});
     }
   for (const std::size_t budget : options.pde_budgets)
@@ -217,10 +214,7 @@ std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const a
                                  .budget = budget,
                                  .ratio = options.pde_budget_ratio,
                                  .lossless = false},
-                     .make = [&, budget, name] {
-                       return detail::encode_pde(scan, alignment, options.pde_budget_ratio, false,
-                                                 options.scheme, name, budget);
-                     }});
+                     .make = [&, budget] { return pde.make(options.pde_budget_ratio, false, budget); }});
   return tasks;
 }
 
@@ -336,7 +330,8 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   if (!geometry) return std::move(geometry).error();
 
   const Measurer measurer(*prepared, options, tick);
-  std::vector<Task> tasks = encoding_tasks(*geometry, scan, prepared->alignment, name, options);
+  detail::PdeFiles pde(scan, prepared->alignment, prepared->canonical, options.scheme, std::string(name));
+  std::vector<Task> tasks = encoding_tasks(*geometry, pde, options);
   measurer.run(tasks);
   share_raw_fidelity(tasks, measurer);
   std::vector<Task> decimated = decimation_tasks(tasks, *geometry, options, measurer);

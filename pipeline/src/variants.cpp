@@ -1,4 +1,5 @@
 #include "variants.hpp"
+#include "encode_residual.hpp"
 
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
@@ -269,26 +270,86 @@ Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget, c
   return *std::move(best);
 }
 
-Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio, bool lossless,
-                           pde::Scheme scheme, std::string_view source, std::optional<std::size_t> size) {
-  EncodeRequest request;
+struct PdeFiles::AtRatio {
+  std::once_flag sliced_once;
+  std::optional<Result<SlicedScan>> sliced;
+  double slice_ms = 0.0;
+  std::once_flag lossy_once; // the lossy file under the files with a residual layer
+  std::optional<Result<EncodeOutcome>> lossy;
+  double lossy_ms = 0.0;
+  std::mutex grids_mutex;
+  ResidualGrids grids;
+};
+
+PdeFiles::PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
+                   pde::Scheme scheme, std::string source)
+    : scan_(scan), alignment_(alignment), canonical_(canonical), scheme_(scheme), source_(std::move(source)) {
+}
+
+PdeFiles::~PdeFiles() = default;
+
+EncodeRequest PdeFiles::request(double ratio, bool lossless, std::optional<std::size_t> size) const {
+  EncodeRequest request; // what `pdeface encode` asks with its defaults, unchecked (measured by the caller)
   request.residual.size_bytes = size;
   request.profiles.ratio = ratio;
   request.encoding.lossless = lossless;
-  request.source = source;
-  request.pde.scheme = scheme;
-  request.check.reset(); // measured and checked by the caller, on the scan's yardstick
+  request.source = source_;
+  request.pde.scheme = scheme_;
+  request.check.reset();
+  return request;
+}
+
+PdeFiles::AtRatio& PdeFiles::at(double ratio) {
+  const std::lock_guard lock(mutex_);
+  std::unique_ptr<AtRatio>& r = ratios_[ratio];
+  if (!r) r = std::make_unique<AtRatio>();
+  return *r;
+}
+
+Result<Encoded> PdeFiles::make(double ratio, bool lossless, std::optional<std::size_t> size) {
+  const EncodeRequest asked = request(ratio, lossless, size);
+  AtRatio& r = at(ratio);
+  std::call_once(r.sliced_once, [&] {
+    const Clock::time_point start = Clock::now();
+    r.sliced = slice_and_solve(canonical_, asked);
+    r.slice_ms = milliseconds_since(start);
+  });
+  if (!*r.sliced) return r.sliced->error();
   Encoded e;
-  Clock::time_point start = Clock::now();
-  Result<EncodeOutcome> made = encode_aligned(scan, alignment, request);
-  if (!made) return std::move(made).error();
-  e.bytes = std::move(made->encoded.bytes);
-  e.encode_ms = milliseconds_since(start);
+  std::string bytes;
+  if (!size) {
+    const Clock::time_point start = Clock::now();
+    Result<EncodeOutcome> made = encode_sliced(canonical_, alignment_, **r.sliced, asked);
+    if (!made) return std::move(made).error();
+    e.encode_ms = r.slice_ms + milliseconds_since(start);
+    bytes = std::move(made->encoded.bytes);
+  } else {
+    // The curves alone, then the layer on them: what encode_sliced does with `size`, in two steps.
+    std::call_once(r.lossy_once, [&] {
+      const Clock::time_point start = Clock::now();
+      r.lossy = encode_sliced(canonical_, alignment_, **r.sliced, request(ratio, false, std::nullopt));
+      r.lossy_ms = milliseconds_since(start);
+    });
+    if (!*r.lossy) return r.lossy->error();
+    EncodeOutcome outcome = **r.lossy;
+    const std::lock_guard lock(r.grids_mutex);
+    std::map<double, double> before; // the grids made already (by spacing as made): their times
+    for (const auto& entry : r.grids.by_spacing)
+      before.emplace(entry.second.spacing_mm, entry.second.made_ms);
+    const Clock::time_point start = Clock::now();
+    Result<ResidualOutcome> layer = add_residual(canonical_, outcome, asked.residual, source_, &r.grids);
+    if (!layer) return with_source(std::move(layer).error(), source_);
+    e.encode_ms = r.slice_ms + r.lossy_ms + milliseconds_since(start);
+    if (const auto reused = before.find(layer->spacing_mm); reused != before.end())
+      e.encode_ms += reused->second; // the grid this file's layer was cut from, made for another size
+    bytes = std::move(outcome.encoded.bytes);
+  }
+  e.bytes = std::move(bytes);
   // What a reader of the file does: parse its bytes, solve the surface and mesh it in the scan's frame.
-  start = Clock::now();
-  Result<pdef::Face> face = pdef::decode(e.bytes, source);
+  const Clock::time_point start = Clock::now();
+  Result<pdef::Face> face = pdef::decode(e.bytes, source_);
   if (!face) return std::move(face).error();
-  Result<Mesh> mesh = pdef::to_mesh(*face, std::nullopt, source);
+  Result<Mesh> mesh = pdef::to_mesh(*face, std::nullopt, source_);
   if (!mesh) return std::move(mesh).error();
   e.decode_ms = milliseconds_since(start);
   e.decoded = *std::move(mesh);

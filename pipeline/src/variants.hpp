@@ -6,11 +6,15 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/pipeline/report.hpp"
 
 #include <chrono>
 #include <functional>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -64,12 +68,38 @@ struct Decimated {
                                                    const std::function<double(const Mesh&)>& error,
                                                    const std::map<int, std::size_t>& whole_bytes = {});
 
-//! The `.pdef` file of the aligned scan sliced at `ratio` (`encode_aligned`: lossy within the default error,
-//! or lossless; `scheme`), and what a reader makes of its bytes: `pdef::decode`, then the surface solved and
-//! meshed in the scan's frame at the default grid (`pdef::to_mesh`). Encoding and decoding timed apart.
-//! With `size`: a residual layer after the curves, the file at most `size` bytes (`pdeface encode --size`).
-[[nodiscard]] Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio,
-                                         bool lossless, pde::Scheme scheme, std::string_view source,
-                                         std::optional<std::size_t> size = std::nullopt);
+//! The `.pdef` files of one aligned scan, and what a reader makes of their bytes. `make(ratio, lossless,
+//! size)` is the file `encode_aligned` writes of the scan sliced at `ratio` (lossy within the default error,
+//! or lossless; `scheme`; with `size`, a residual layer after the curves, the file at most `size` bytes:
+//! `pdeface encode --size`), byte for byte, decoded by `pdef::decode` and meshed in the scan's frame at the
+//! default grid (`pdef::to_mesh`), encoding and decoding timed apart. What the files share is made once:
+//! the slicing and the surface at each ratio (for its lossy and lossless files), the lossy file under the
+//! files with a residual layer, and each residual grid (one for every size it serves); a file's
+//! `encode_ms` counts every step it took, shared or not, as if it had been made alone. Thread-safe; `scan`,
+//! `alignment` and `canonical` (the scan in the canonical frame, `canonical_scan`) must outlive it.
+class PdeFiles {
+public:
+  PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
+           pde::Scheme scheme, std::string source);
+  PdeFiles(const PdeFiles&) = delete;
+  PdeFiles& operator=(const PdeFiles&) = delete;
+  ~PdeFiles();
+
+  [[nodiscard]] Result<Encoded> make(double ratio, bool lossless,
+                                     std::optional<std::size_t> size = std::nullopt);
+
+private:
+  struct AtRatio;
+  [[nodiscard]] EncodeRequest request(double ratio, bool lossless, std::optional<std::size_t> size) const;
+  AtRatio& at(double ratio);
+
+  const Mesh& scan_;
+  const align::Alignment& alignment_;
+  const CanonicalScan& canonical_;
+  pde::Scheme scheme_;
+  std::string source_;
+  std::mutex mutex_; // guards `ratios_`'s insertions
+  std::map<double, std::unique_ptr<AtRatio>> ratios_;
+};
 
 } // namespace pdeface::pipeline::detail
