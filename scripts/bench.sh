@@ -4,7 +4,8 @@
 # pdeface against draco_encoder / draco_decoder / libdraco in the same run, as ratios (docs/performance.md
 # explains every row). Needs the real scans ($PDEFACE_DATA, default ../shared/faces). Takes ~8 minutes
 # on 2 cores (--quick: ~1). --smoke (CI): every benchmark program once for a few iterations, no table,
-# no judgement of time (~20 s). Usage: scripts/bench.sh [--quick] [--runs N] [--json FILE] [--smoke]
+# no judgement of time (~30 s: compare_bench runs one comparison).
+# Usage: scripts/bench.sh [--quick] [--runs N] [--json FILE] [--smoke]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 "$root/scripts/deps.sh"

@@ -28,16 +28,21 @@ Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& requ
   return encode_aligned(scan, *std::move(alignment), request);
 }
 
-Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignment,
-                                     const EncodeRequest& request) {
-  const CanonicalScan canonical = canonical_scan(scan, alignment);
-  Result<slice::ProfileSet> profiles = extract_profiles(canonical, request.profiles);
+Result<SlicedScan> slice_and_solve(const CanonicalScan& canonical, const EncodeRequest& request) {
   auto named = [&](Error e) { return with_source(std::move(e), request.source); };
+  Result<slice::ProfileSet> profiles = extract_profiles(canonical, request.profiles);
   if (!profiles) return named(std::move(profiles).error());
   Result<pde::Surface> surface = surface_from(*profiles, request.pde, request.source);
   if (!surface) return named(std::move(surface).error());
-  EncodeOutcome out{std::move(alignment), *std::move(profiles), {}, {}};
-  out.face = to_face(out.profiles, *surface, request.pde);
+  return SlicedScan{*std::move(profiles), *std::move(surface)};
+}
+
+Result<EncodeOutcome> encode_sliced(const CanonicalScan& canonical, align::Alignment alignment,
+                                    const SlicedScan& sliced, const EncodeRequest& request,
+                                    ResidualGrids* grids) {
+  auto named = [&](Error e) { return with_source(std::move(e), request.source); };
+  EncodeOutcome out{std::move(alignment), sliced.profiles, {}, {}};
+  out.face = to_face(out.profiles, sliced.surface, request.pde);
   out.face.name = clean_name(request.name); // a .pdef name is printable UTF-8, at most 1024 bytes
   if (request.store_landmarks)
     for (std::size_t i = 0; i < align::kLandmarkCount; ++i)
@@ -47,10 +52,22 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
   if (!encoded) return named(std::move(encoded).error());
   out.encoded = *std::move(encoded);
   if (request.residual.wanted()) {
-    Result<ResidualOutcome> layer = add_residual(canonical, out, request.residual, request.source);
+    Result<ResidualOutcome> layer = add_residual(canonical, out, request.residual, request.source, grids);
     if (!layer) return named(std::move(layer).error());
     out.residual = *std::move(layer);
   }
+  return out;
+}
+
+Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignment,
+                                     const EncodeRequest& request) {
+  const CanonicalScan canonical = canonical_scan(scan, alignment);
+  Result<SlicedScan> sliced = slice_and_solve(canonical, request);
+  if (!sliced) return std::move(sliced).error();
+  Result<EncodeOutcome> made = encode_sliced(canonical, std::move(alignment), *sliced, request);
+  if (!made) return made;
+  EncodeOutcome out = *std::move(made);
+  auto named = [&](Error e) { return with_source(std::move(e), request.source); };
   if (!request.check) return out;
   // What a reader gets: the file's bytes decoded and meshed, back in the canonical frame.
   Result<pdef::Face> decoded = pdef::decode(out.encoded.bytes, request.source);

@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include <chrono>
+
 namespace pdeface::pipeline {
 namespace {
 
@@ -38,7 +40,8 @@ metrics::CheckLimits with_scans_folds(metrics::CheckLimits limits, const Mesh& s
 }
 
 Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& outcome,
-                                     const ResidualRequest& request, std::string_view source) {
+                                     const ResidualRequest& request, std::string_view source,
+                                     ResidualGrids* grids) {
   const std::string curves = outcome.encoded.bytes;
   if (request.size_bytes && *request.size_bytes < curves.size())
     return make_error(
@@ -53,18 +56,35 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
   Result<pde::Surface> surface = pdef::surface_of(*face, source);
   if (!surface) return std::move(surface).error();
   ResidualOutcome out;
-  out.spacing_mm = spacing_for(request, curves.size());
-  residual::GridSize grid = residual::grid_for(*surface, out.spacing_mm);
-  while (grid.width * grid.height > pdef::kFreeResidualNodes) { // a bust's long, steep sides: coarser
-    out.spacing_mm *= 1.1;
-    grid = residual::grid_for(*surface, out.spacing_mm);
+  const double asked = spacing_for(request, curves.size());
+  const ResidualGrids::Grid* made_grid = nullptr;
+  ResidualGrids::Grid own;
+  if (grids)
+    if (const auto found = grids->by_spacing.find(asked); found != grids->by_spacing.end())
+      made_grid = &found->second;
+  if (!made_grid) {
+    const auto start = std::chrono::steady_clock::now();
+    own.spacing_mm = asked;
+    residual::GridSize grid = residual::grid_for(*surface, own.spacing_mm);
+    while (grid.width * grid.height > pdef::kFreeResidualNodes) { // a bust's long, steep sides: coarser
+      own.spacing_mm *= 1.1;
+      grid = residual::grid_for(*surface, own.spacing_mm);
+    }
+    const residual::Measured measured = residual::measure(*surface, scan.mesh, grid.width, grid.height);
+    Result<pdef::CodedResidual> coded = pdef::code_residual(measured.field);
+    if (!coded) return std::move(coded).error();
+    own.width = grid.width;
+    own.height = grid.height;
+    own.found_share = measured.found_share();
+    own.coded = *std::move(coded);
+    own.made_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    made_grid = grids ? &(grids->by_spacing[asked] = std::move(own)) : &own;
   }
-  const residual::Measured measured = residual::measure(*surface, scan.mesh, grid.width, grid.height);
-  Result<pdef::CodedResidual> coded = pdef::code_residual(measured.field);
-  if (!coded) return std::move(coded).error();
-  out.width = grid.width;
-  out.height = grid.height;
-  out.found_share = measured.found_share();
+  const pdef::CodedResidual* coded = &made_grid->coded;
+  out.spacing_mm = made_grid->spacing_mm;
+  out.width = made_grid->width;
+  out.height = made_grid->height;
+  out.found_share = made_grid->found_share;
   out.whole_stream = coded->stream.size();
   const std::size_t smallest = curves.size() + pdef::residual_header(*coded, 0).size();
   const std::size_t largest =

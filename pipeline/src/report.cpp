@@ -171,10 +171,10 @@ private:
   const std::function<void(std::string_view)>& tick_;
 };
 
-// Step 3's tasks: raw files (and gzipped), Draco at each quantisation, and the PDE at each ratio. The
-// tasks refer to `geometry`, `scan`, `alignment` and `options`, which must outlive them.
-std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const align::Alignment& alignment,
-                                 std::string_view name, const CompareOptions& options) {
+// Step 3's tasks: raw files (and gzipped), Draco at each quantisation, and the PDE at each ratio (what the
+// `.pdef` files share made once, `PdeFiles`). The tasks refer to `geometry`, `pde` and `options`, which must
+// outlive them.
+std::vector<Task> encoding_tasks(const Mesh& geometry, detail::PdeFiles& pde, const CompareOptions& options) {
   std::vector<Task> tasks;
   for (bool gzipped : {false, true})
     for (formats::Format f : kRawFormats) {
@@ -203,10 +203,7 @@ std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const a
                        .extension = ".pdef",
                        .ratio = ratio,
                        .lossless = lossless},
-           .make =
-               [&, ratio, lossless, name] {
-                 return detail::encode_pde(scan, alignment, ratio, lossless, options.scheme, name);
-               },
+           .make = [&pde, ratio, lossless] { return pde.make(ratio, lossless); },
            .keep_mesh = !lossless && std::abs(ratio - options.heat_ratio) < 1e-9});
     }
   for (const std::size_t budget : options.pde_budgets)
@@ -217,10 +214,7 @@ std::vector<Task> encoding_tasks(const Mesh& geometry, const Mesh& scan, const a
                                  .budget = budget,
                                  .ratio = options.pde_budget_ratio,
                                  .lossless = false},
-                     .make = [&, budget, name] {
-                       return detail::encode_pde(scan, alignment, options.pde_budget_ratio, false,
-                                                 options.scheme, name, budget);
-                     }});
+                     .make = [&, budget] { return pde.make(options.pde_budget_ratio, false, budget); }});
   return tasks;
 }
 
@@ -252,6 +246,12 @@ std::vector<Task> decimation_tasks(const std::vector<Task>& tasks, const Mesh& g
   std::vector<std::pair<std::size_t, std::string>> budgets;
   for (std::size_t budget : options.budgets)
     budgets.emplace_back(budget, fmt::format("decimate+draco {} B", budget));
+  // The whole geometry's Draco bytes at each bits, where a Draco row has them (same geometry and level).
+  std::map<int, std::size_t> whole_bytes;
+  for (const Task& t : tasks)
+    if (t.variant.method == Method::Draco && t.variant.failure.empty() && t.variant.bytes > 0 &&
+        t.variant.bits > 0)
+      whole_bytes.emplace(t.variant.bits, t.variant.bytes);
   std::string heat_label;
   if (options.budgets_at_pde)
     for (const Task& t : tasks)
@@ -268,11 +268,13 @@ std::vector<Task> decimation_tasks(const std::vector<Task>& tasks, const Mesh& g
                                      .extension = ".drc",
                                      .budget = budget,
                                      .lossless = false},
-                         .make = [&, budget]() -> Result<Encoded> {
+                         .make = [&, budget, whole_bytes]() -> Result<Encoded> {
                            Result<detail::Decimated> d = detail::decimate_to_budget(
-                               geometry, budget, options, [&](const Mesh& decoded) {
+                               geometry, budget, options,
+                               [&](const Mesh& decoded) {
                                  return measurer.yardstick().quick_mask_mean(measurer.in_canonical(decoded));
-                               });
+                               },
+                               whole_bytes);
                            if (!d) return std::move(d).error();
                            return std::move(d->encoded);
                          },
@@ -328,7 +330,8 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   if (!geometry) return std::move(geometry).error();
 
   const Measurer measurer(*prepared, options, tick);
-  std::vector<Task> tasks = encoding_tasks(*geometry, scan, prepared->alignment, name, options);
+  detail::PdeFiles pde(scan, prepared->alignment, prepared->canonical, options.scheme, std::string(name));
+  std::vector<Task> tasks = encoding_tasks(*geometry, pde, options);
   measurer.run(tasks);
   share_raw_fidelity(tasks, measurer);
   std::vector<Task> decimated = decimation_tasks(tasks, *geometry, options, measurer);

@@ -1,4 +1,5 @@
 #include "variants.hpp"
+#include "encode_residual.hpp"
 
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
 
 namespace pdeface::pipeline::detail {
 namespace {
@@ -138,55 +140,117 @@ Mesh simplify(const Mesh& geometry, std::size_t target, bool lock_border) {
   return out;
 }
 
+namespace {
+
+// Draco's bytes grow as a power of the triangle count: bytes ≈ c · triangles^slope. The slope between two
+// tries, kept within what Draco gives on decimated faces (about 0.55-0.85), else `fallback`.
+double slope_between(double t0, double b0, double t1, double b1, double fallback) {
+  if (t0 <= 0.0 || t1 <= 0.0 || b0 <= 0.0 || b1 <= 0.0 || std::abs(std::log(t1 / t0)) < 0.01) return fallback;
+  return std::clamp(std::log(b1 / b0) / std::log(t1 / t0), 0.3, 1.5);
+}
+
+// The triangle count whose bytes should be `aim`, from a try of `t` triangles that gave `bytes`.
+double predict(double t, double bytes, double aim, double slope) {
+  return t * std::pow(aim / bytes, 1.0 / slope);
+}
+
+Result<std::string> draco_bytes(const Mesh& mesh, int bits, int level) {
+  return formats::encode_mesh(mesh, file_name(formats::Format::Draco),
+                              {.draco_bits = bits, .draco_level = level});
+}
+
+} // namespace
+
 Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget, const CompareOptions& options,
-                                     const std::function<double(const Mesh&)>& error) {
+                                     const std::function<double(const Mesh&)>& error,
+                                     const std::map<int, std::size_t>& whole_bytes) {
   if (geometry.triangles.empty())
     return make_error(ErrorCode::InvalidArgument, "a point cloud has no triangles to simplify");
   const auto lowest =
       static_cast<std::size_t>(std::ceil((1.0 - options.budget_slack) * static_cast<double>(budget)));
-  const double aim = 0.5 * (static_cast<double>(lowest) + static_cast<double>(budget));
+  // Aim high in the range (the most triangles that fit), with room for the prediction's error (~3 %).
+  const double aim = static_cast<double>(lowest) + 0.75 * static_cast<double>(budget - lowest);
+  const auto all = static_cast<double>(geometry.triangles.size());
   std::optional<Decimated> best;
   double best_error = std::numeric_limits<double>::infinity();
   std::size_t tried = 0, under = 0;
   int worse_in_a_row = 0;
-  // Bytes per triangle of Draco on decimated faces: about 1.5 (a start; the search corrects it).
-  double triangles_guess = static_cast<double>(budget) / 1.5;
+  // Where the search at the next bits starts: the last fitting mesh encoded at those bits (one Draco
+  // encode, no simplification), moved along the slope found so far.
+  double slope = 0.75;
+  std::optional<Mesh> last_fit;
   for (int bits : options.decimate_bits) {
+    // The whole scan at these bits (the Draco rows): smaller than the budget asks, nothing to decimate; else
+    // a first point of the curve bytes(triangles).
+    std::optional<std::pair<double, double>> anchor;
+    if (const auto whole = whole_bytes.find(bits); whole != whole_bytes.end()) {
+      if (whole->second < lowest) {
+        under = std::max(under, whole->second);
+        continue;
+      }
+      anchor.emplace(all, static_cast<double>(whole->second));
+    }
+    std::optional<std::pair<double, double>> previous = anchor; // the last point of the curve at these bits
+    if (last_fit) {
+      Result<std::string> probe = draco_bytes(*last_fit, bits, options.draco_level);
+      if (!probe) return std::move(probe).error();
+      previous.emplace(static_cast<double>(last_fit->triangle_count()), static_cast<double>(probe->size()));
+    }
+    // Without a point: Draco on decimated faces takes about 1.5 bytes a triangle.
+    const double guess =
+        previous ? predict(previous->first, previous->second, aim, slope) : static_cast<double>(budget) / 1.5;
     // The most triangles whose bytes fit: secant steps on log(bytes) against log(triangles), kept inside
     // the bracket [fits, too big] found so far.
     std::size_t fits = 0, too_big = geometry.triangles.size() + 1;
-    std::optional<Encoded> fitting;
-    auto t = static_cast<std::size_t>(triangles_guess);
+    std::optional<std::string> fitting;
+    std::optional<Mesh> fitting_mesh;
+    double fitting_ms = 0.0;
+    auto t = static_cast<std::size_t>(guess);
     for (int step = 0; step < 12; ++step) {
       t = std::clamp<std::size_t>(t, 4, geometry.triangles.size());
       if (t <= fits || t >= too_big) t = fits + (too_big - fits) / 2;
       if (t <= fits || t >= too_big) break; // the bracket is closed
-      Clock::time_point start = Clock::now();
-      const Mesh simplified = simplify(geometry, t, options.lock_border);
-      Result<Encoded> e = encode_draco(simplified, bits, options.draco_level);
+      const Clock::time_point start = Clock::now();
+      Mesh simplified = simplify(geometry, t, options.lock_border);
+      Result<std::string> bytes = draco_bytes(simplified, bits, options.draco_level);
       ++tried;
-      if (!e) return std::move(e).error();
-      e->encode_ms = milliseconds_since(start) - e->decode_ms; // simplifying and encoding
-      const double bytes = static_cast<double>(e->bytes.size());
-      if (e->bytes.size() <= budget) {
+      if (!bytes) return std::move(bytes).error();
+      const double ms = milliseconds_since(start); // simplifying and encoding
+      const auto size = static_cast<double>(bytes->size());
+      const auto made = static_cast<double>(t);
+      if (previous) slope = slope_between(previous->first, previous->second, made, size, slope);
+      previous.emplace(made, size);
+      if (bytes->size() <= budget) {
         fits = t;
-        fitting = *std::move(e);
-        if (bytes >= static_cast<double>(lowest)) break;
+        fitting = *std::move(bytes);
+        fitting_mesh = std::move(simplified);
+        fitting_ms = ms;
+        if (size >= static_cast<double>(lowest)) break;
       } else {
         too_big = t;
       }
-      t = static_cast<std::size_t>(static_cast<double>(t) * aim / bytes);
+      t = static_cast<std::size_t>(predict(made, size, aim, slope));
     }
     if (!fitting) continue;
-    if (fitting->bytes.size() < lowest) { // the whole scan at these bits is smaller than the budget asks
-      under = std::max(under, fitting->bytes.size());
+    if (fitting->size() < lowest) { // the whole scan at these bits is smaller than the budget asks
+      under = std::max(under, fitting->size());
       continue;
     }
-    triangles_guess = static_cast<double>(fits) * 0.95; // more bits, fewer triangles
-    const double e = error(fitting->decoded);
-    if (e < best_error) {
-      best_error = e;
-      best = Decimated{*std::move(fitting), bits, 0};
+    last_fit = std::move(fitting_mesh);
+    // What a reader of the file gets, decoded once, for the error and the row.
+    Encoded e;
+    e.bytes = *std::move(fitting);
+    e.encode_ms = fitting_ms;
+    e.bits = bits;
+    const Clock::time_point start = Clock::now();
+    Result<Mesh> decoded = decode(e.bytes, formats::Format::Draco);
+    if (!decoded) return std::move(decoded).error();
+    e.decode_ms = milliseconds_since(start);
+    e.decoded = *std::move(decoded);
+    const double err = error(e.decoded);
+    if (err < best_error) {
+      best_error = err;
+      best = Decimated{std::move(e), bits, 0};
       worse_in_a_row = 0;
     } else if (++worse_in_a_row == 2) {
       break; // the error grows with the bits from here on
@@ -206,26 +270,86 @@ Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget, c
   return *std::move(best);
 }
 
-Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio, bool lossless,
-                           pde::Scheme scheme, std::string_view source, std::optional<std::size_t> size) {
-  EncodeRequest request;
+struct PdeFiles::AtRatio {
+  std::once_flag sliced_once;
+  std::optional<Result<SlicedScan>> sliced;
+  double slice_ms = 0.0;
+  std::once_flag lossy_once; // the lossy file under the files with a residual layer
+  std::optional<Result<EncodeOutcome>> lossy;
+  double lossy_ms = 0.0;
+  std::mutex grids_mutex;
+  ResidualGrids grids;
+};
+
+PdeFiles::PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
+                   pde::Scheme scheme, std::string source)
+    : scan_(scan), alignment_(alignment), canonical_(canonical), scheme_(scheme), source_(std::move(source)) {
+}
+
+PdeFiles::~PdeFiles() = default;
+
+EncodeRequest PdeFiles::request(double ratio, bool lossless, std::optional<std::size_t> size) const {
+  EncodeRequest request; // what `pdeface encode` asks with its defaults, unchecked (measured by the caller)
   request.residual.size_bytes = size;
   request.profiles.ratio = ratio;
   request.encoding.lossless = lossless;
-  request.source = source;
-  request.pde.scheme = scheme;
-  request.check.reset(); // measured and checked by the caller, on the scan's yardstick
+  request.source = source_;
+  request.pde.scheme = scheme_;
+  request.check.reset();
+  return request;
+}
+
+PdeFiles::AtRatio& PdeFiles::at(double ratio) {
+  const std::lock_guard lock(mutex_);
+  std::unique_ptr<AtRatio>& r = ratios_[ratio];
+  if (!r) r = std::make_unique<AtRatio>();
+  return *r;
+}
+
+Result<Encoded> PdeFiles::make(double ratio, bool lossless, std::optional<std::size_t> size) {
+  const EncodeRequest asked = request(ratio, lossless, size);
+  AtRatio& r = at(ratio);
+  std::call_once(r.sliced_once, [&] {
+    const Clock::time_point start = Clock::now();
+    r.sliced = slice_and_solve(canonical_, asked);
+    r.slice_ms = milliseconds_since(start);
+  });
+  if (!*r.sliced) return r.sliced->error();
   Encoded e;
-  Clock::time_point start = Clock::now();
-  Result<EncodeOutcome> made = encode_aligned(scan, alignment, request);
-  if (!made) return std::move(made).error();
-  e.bytes = std::move(made->encoded.bytes);
-  e.encode_ms = milliseconds_since(start);
+  std::string bytes;
+  if (!size) {
+    const Clock::time_point start = Clock::now();
+    Result<EncodeOutcome> made = encode_sliced(canonical_, alignment_, **r.sliced, asked);
+    if (!made) return std::move(made).error();
+    e.encode_ms = r.slice_ms + milliseconds_since(start);
+    bytes = std::move(made->encoded.bytes);
+  } else {
+    // The curves alone, then the layer on them: what encode_sliced does with `size`, in two steps.
+    std::call_once(r.lossy_once, [&] {
+      const Clock::time_point start = Clock::now();
+      r.lossy = encode_sliced(canonical_, alignment_, **r.sliced, request(ratio, false, std::nullopt));
+      r.lossy_ms = milliseconds_since(start);
+    });
+    if (!*r.lossy) return r.lossy->error();
+    EncodeOutcome outcome = **r.lossy;
+    const std::lock_guard lock(r.grids_mutex);
+    std::map<double, double> before; // the grids made already (by spacing as made): their times
+    for (const auto& entry : r.grids.by_spacing)
+      before.emplace(entry.second.spacing_mm, entry.second.made_ms);
+    const Clock::time_point start = Clock::now();
+    Result<ResidualOutcome> layer = add_residual(canonical_, outcome, asked.residual, source_, &r.grids);
+    if (!layer) return with_source(std::move(layer).error(), source_);
+    e.encode_ms = r.slice_ms + r.lossy_ms + milliseconds_since(start);
+    if (const auto reused = before.find(layer->spacing_mm); reused != before.end())
+      e.encode_ms += reused->second; // the grid this file's layer was cut from, made for another size
+    bytes = std::move(outcome.encoded.bytes);
+  }
+  e.bytes = std::move(bytes);
   // What a reader of the file does: parse its bytes, solve the surface and mesh it in the scan's frame.
-  start = Clock::now();
-  Result<pdef::Face> face = pdef::decode(e.bytes, source);
+  const Clock::time_point start = Clock::now();
+  Result<pdef::Face> face = pdef::decode(e.bytes, source_);
   if (!face) return std::move(face).error();
-  Result<Mesh> mesh = pdef::to_mesh(*face, std::nullopt, source);
+  Result<Mesh> mesh = pdef::to_mesh(*face, std::nullopt, source_);
   if (!mesh) return std::move(mesh).error();
   e.decode_ms = milliseconds_since(start);
   e.decoded = *std::move(mesh);

@@ -6,10 +6,15 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/pipeline/encode.hpp"
+#include "pdeface/pipeline/reconstruct.hpp"
 #include "pdeface/pipeline/report.hpp"
 
 #include <chrono>
 #include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -45,10 +50,14 @@ struct Encoded {
 //! than the scan has), vertices on no triangle dropped.
 [[nodiscard]] Mesh simplify(const Mesh& geometry, std::size_t target, bool lock_border);
 
-//! Decimate + Draco within `budget` bytes: for each of `options.decimate_bits`, the most triangles whose
-//! Draco bytes fit in [budget × (1 − slack), budget]; of those, the one `error` (of the decoded mesh, in
-//! the scan's frame) finds best. Errors: `InvalidArgument` for a point cloud or a budget too small for
-//! any mesh.
+//! Decimate + Draco within `budget` bytes: for each of `options.decimate_bits`, a triangle count whose
+//! Draco bytes fit in [budget × (1 − slack), budget] (found by secant steps on log bytes against log
+//! triangles, each a simplification and an encoding; the first at the next bits predicted from the last
+//! fitting mesh encoded at those bits); of those, the one `error` (of the decoded mesh, in the scan's
+//! frame) finds best, from the fewest bits up until it has grown twice in a row. `whole_bytes`: the whole
+//! `geometry`'s Draco bytes at some bits, when known (the Draco rows): bits at which it is under the budget's
+//! range are skipped, and the others start from it. Errors: `InvalidArgument` for a point cloud or a
+//! budget too small for any mesh.
 struct Decimated {
   Encoded encoded;
   int bits = 0;
@@ -56,14 +65,41 @@ struct Decimated {
 };
 [[nodiscard]] Result<Decimated> decimate_to_budget(const Mesh& geometry, std::size_t budget,
                                                    const CompareOptions& options,
-                                                   const std::function<double(const Mesh&)>& error);
+                                                   const std::function<double(const Mesh&)>& error,
+                                                   const std::map<int, std::size_t>& whole_bytes = {});
 
-//! The `.pdef` file of the aligned scan sliced at `ratio` (`encode_aligned`: lossy within the default error,
-//! or lossless; `scheme`), and what a reader makes of its bytes: `pdef::decode`, then the surface solved and
-//! meshed in the scan's frame at the default grid (`pdef::to_mesh`). Encoding and decoding timed apart.
-//! With `size`: a residual layer after the curves, the file at most `size` bytes (`pdeface encode --size`).
-[[nodiscard]] Result<Encoded> encode_pde(const Mesh& scan, const align::Alignment& alignment, double ratio,
-                                         bool lossless, pde::Scheme scheme, std::string_view source,
-                                         std::optional<std::size_t> size = std::nullopt);
+//! The `.pdef` files of one aligned scan, and what a reader makes of their bytes. `make(ratio, lossless,
+//! size)` is the file `encode_aligned` writes of the scan sliced at `ratio` (lossy within the default error,
+//! or lossless; `scheme`; with `size`, a residual layer after the curves, the file at most `size` bytes:
+//! `pdeface encode --size`), byte for byte, decoded by `pdef::decode` and meshed in the scan's frame at the
+//! default grid (`pdef::to_mesh`), encoding and decoding timed apart. What the files share is made once:
+//! the slicing and the surface at each ratio (for its lossy and lossless files), the lossy file under the
+//! files with a residual layer, and each residual grid (one for every size it serves); a file's
+//! `encode_ms` counts every step it took, shared or not, as if it had been made alone. Thread-safe; `scan`,
+//! `alignment` and `canonical` (the scan in the canonical frame, `canonical_scan`) must outlive it.
+class PdeFiles {
+public:
+  PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
+           pde::Scheme scheme, std::string source);
+  PdeFiles(const PdeFiles&) = delete;
+  PdeFiles& operator=(const PdeFiles&) = delete;
+  ~PdeFiles();
+
+  [[nodiscard]] Result<Encoded> make(double ratio, bool lossless,
+                                     std::optional<std::size_t> size = std::nullopt);
+
+private:
+  struct AtRatio;
+  [[nodiscard]] EncodeRequest request(double ratio, bool lossless, std::optional<std::size_t> size) const;
+  AtRatio& at(double ratio);
+
+  const Mesh& scan_;
+  const align::Alignment& alignment_;
+  const CanonicalScan& canonical_;
+  pde::Scheme scheme_;
+  std::string source_;
+  std::mutex mutex_; // guards `ratios_`'s insertions
+  std::map<double, std::unique_ptr<AtRatio>> ratios_;
+};
 
 } // namespace pdeface::pipeline::detail
