@@ -4,6 +4,7 @@
 #include "gltf_validator.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/formats/formats.hpp"
 #include "pdeface/gltf/gltf.hpp"
 #include "pdeface_test.hpp"
 
@@ -45,6 +46,46 @@ TEST(GltfValidator, WrittenFilesHaveNoErrors) {
   };
   test::TempDir dir;
   for (const auto& [name, bytes] : files) {
+    SCOPED_TRACE(name);
+    ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
+    ASSERT_TRUE(write_file_atomic(dir / name, *bytes).ok());
+    test::expect_valid_gltf(*node, *validator, dir / name);
+  }
+}
+
+// The case: a textured scan with seams (james.obj, its material library and photo) as a GLB that
+// the validator passes, the photo embedded.
+TEST(GltfValidator, JamesWithItsPhotoHasNoErrors) {
+  PDEFACE_GLTF_VALIDATOR_OR_SKIP(node, validator);
+  PDEFACE_FACE_OR_SKIP(path, "james.obj");
+  test::TempDir dir;
+  Notes notes;
+  const Result<formats::ConvertReport> done = formats::convert(path, dir / "james.glb", {}, {}, &notes);
+  ASSERT_TRUE(done.ok()) << done.error().to_string();
+  test::expect_valid_gltf(*node, *validator, dir / "james.glb");
+}
+
+TEST(GltfValidator, TexturedMeshesHaveNoErrors) {
+  PDEFACE_GLTF_VALIDATOR_OR_SKIP(node, validator);
+  Mesh face = sample_face({.spacing_mm = 4.0});
+  face.texcoords.clear();
+  for (const Vec3& p : face.positions)
+    face.texcoords.emplace_back(static_cast<float>(p.x() / 200 + 0.5), static_cast<float>(p.y() / 200 + 0.5));
+  Result<std::string> png = read_file(test::fixtures() / "obj" / "texture.png");
+  ASSERT_TRUE(png.ok());
+  face.material =
+      Material{.name = "skin",
+               .base_color = Vec4f(1, 0.9F, 0.8F, 1),
+               .base_color_image = Image{.bytes = *png, .mime_type = "image/png", .uri = "t.png"}};
+  // A seam: the first triangle's first corner gets a coordinate of its own.
+  face.texcoord_triangles = face.triangles;
+  face.texcoords.emplace_back(0.0F, 0.0F);
+  face.texcoord_triangles[0][0] = static_cast<std::uint32_t>(face.texcoords.size() - 1);
+  test::TempDir dir;
+  for (const auto& [name, bytes] : std::vector<std::pair<std::string, Result<std::string>>>{
+           {"textured.glb", gltf::write(face)},
+           {"textured.gltf", gltf::write(face, {.binary = false, .draco = std::nullopt})},
+           {"textured_draco.glb", gltf::write(face, {.draco = drc::WriteOptions{}})}}) {
     SCOPED_TRACE(name);
     ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
     ASSERT_TRUE(write_file_atomic(dir / name, *bytes).ok());
