@@ -249,6 +249,13 @@ Resolver files_beside(const std::filesystem::path& file, std::uint64_t max_bytes
     const std::filesystem::path path = folder / relative;
     if (std::error_code ec; !std::filesystem::is_regular_file(path, ec))
       return make_error(ErrorCode::Io, "no such file", source_name(path));
+    // A symbolic link out of the folder is not followed either.
+    std::error_code ec;
+    const std::filesystem::path real = std::filesystem::weakly_canonical(path, ec);
+    const std::filesystem::path base = std::filesystem::weakly_canonical(folder.empty() ? "." : folder, ec);
+    if (ec || std::ranges::mismatch(base, real).in1 != base.end())
+      return make_error(ErrorCode::UnsupportedFormat, "a link to a file outside the folder is not followed",
+                        source_name(path));
     return read_file(path, max_bytes);
   };
 }

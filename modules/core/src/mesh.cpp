@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 #include <unordered_map>
 
 namespace pdeface {
@@ -138,10 +139,16 @@ std::vector<Vec2f> corner_texcoords(const Mesh& mesh) {
 namespace {
 
 // The bytes of `value` appended to `key`: the maps below compare values bit for bit.
-template <class T> void append_bits(std::string& key, const T& value) {
+template <class T>
+requires std::is_arithmetic_v<T>
+void append_bits(std::string& key, T value) {
   const auto old = key.size();
   key.resize(old + sizeof(T));
   std::memcpy(key.data() + old, &value, sizeof(T));
+}
+template <class Derived> void append_bits(std::string& key, const Eigen::MatrixBase<Derived>& value) {
+  for (Eigen::Index i = 0; i < value.size(); ++i)
+    append_bits(key, value(i));
 }
 
 } // namespace

@@ -49,8 +49,8 @@ struct WriteOptions {
 [[nodiscard]] Result<void> check(const WriteOptions& options);
 
 //! Encodes a mesh (or, without triangles, a point cloud); per-corner texture coordinates split their seam
-//! vertices (`with_vertex_texcoords`); the material is not kept. Positions are quantised (the maximum error per
-//! axis is half a step, step = largest bounding-box side / (2^position_bits - 1)); a note says how large
+//! vertices (`with_vertex_texcoords`); the material is not kept. Positions are quantised (the maximum error
+//! per axis is half a step, step = largest bounding-box side / (2^position_bits - 1)); a note says how large
 //! in the mesh's units. Units are written as the geometry metadata entry "units".
 //! Errors: `InvalidArgument` (options), `Empty` (no vertices), errors of `validate`, `Malformed` when
 //! libdraco refuses the mesh.
