@@ -1,6 +1,7 @@
 #include "pdeface/formats/formats.hpp"
 
 #include "pdeface/core/file.hpp"
+#include "pdeface/core/text.hpp"
 #include "pdeface/draco/draco.hpp"
 #include "pdeface/gltf/gltf.hpp"
 #include "pdeface/obj/obj.hpp"
@@ -34,17 +35,17 @@ constexpr std::array<std::string_view, 1> kGlbExt{".glb"};
 constexpr std::array<std::string_view, 1> kDracoExt{".drc"};
 constexpr std::array<std::string_view, 1> kPdefExt{".pdef"};
 
-// name, extensions, faces, point clouds, normals, colours, texcoords, lossy, writable
+// name, extensions, faces, point clouds, normals, colours, texcoords, lossy, writable, materials
 constexpr std::array<FormatInfo, 9> kFormats{{
-    {Format::Vrml, "VRML", kVrmlExt, true, true, true, true, true, false},
-    {Format::Obj, "OBJ", kObjExt, true, true, true, true, true, false},
-    {Format::Ply, "PLY", kPlyExt, true, true, true, true, true, false},
-    {Format::Off, "OFF", kOffExt, true, true, false, false, false, false},
-    {Format::Stl, "STL", kStlExt, true, false, false, false, false, false},
-    {Format::Gltf, "glTF", kGltfExt, true, true, true, true, true, false},
-    {Format::Glb, "GLB", kGlbExt, true, true, true, true, true, false},
-    {Format::Draco, "Draco", kDracoExt, true, true, true, true, true, true},
-    {Format::Pdef, "PDEF", kPdefExt, true, false, true, false, false, true, false},
+    {Format::Vrml, "VRML", kVrmlExt, true, true, true, true, true, false, true, true},
+    {Format::Obj, "OBJ", kObjExt, true, true, true, true, true, false, true, true},
+    {Format::Ply, "PLY", kPlyExt, true, true, true, true, true, false, true, true},
+    {Format::Off, "OFF", kOffExt, true, true, false, true, false, false, true, false},
+    {Format::Stl, "STL", kStlExt, true, false, false, false, false, false, true, false},
+    {Format::Gltf, "glTF", kGltfExt, true, true, true, true, true, false, true, true},
+    {Format::Glb, "GLB", kGlbExt, true, true, true, true, true, false, true, true},
+    {Format::Draco, "Draco", kDracoExt, true, true, true, true, true, true, true, false},
+    {Format::Pdef, "PDEF", kPdefExt, true, false, true, false, false, true, false, false},
 }};
 
 std::string lowercase(std::string s) {
@@ -84,14 +85,19 @@ Result<Mesh> read_pdef(std::string_view bytes, std::string_view source, const Re
 
 Result<Mesh> decode(Format format, std::string_view bytes, std::string_view source,
                     const ReadOptions& options, Notes* notes) {
+  // References are followed through the caller's resolver, or noted and left.
+  const Resolver none = [](std::string_view) -> Result<std::string> {
+    return make_error(ErrorCode::UnsupportedFormat, "files it refers to are not read (--no-companions)");
+  };
+  const Resolver& resolve = options.companions ? options.resolver : none;
   switch (format) {
-  case Format::Vrml: return vrml::read(bytes, source, notes);
-  case Format::Obj: return obj::read(bytes, source, notes);
-  case Format::Ply: return ply::read(bytes, source, notes);
+  case Format::Vrml: return vrml::read(bytes, source, notes, resolve);
+  case Format::Obj: return obj::read(bytes, source, notes, resolve);
+  case Format::Ply: return ply::read(bytes, source, notes, resolve);
   case Format::Off: return off::read(bytes, source, notes);
   case Format::Stl: return stl::read(bytes, source, notes);
   case Format::Gltf:
-  case Format::Glb: return gltf::read(bytes, source, notes);
+  case Format::Glb: return gltf::read(bytes, source, notes, resolve);
   case Format::Draco: return drc::read(bytes, source, notes);
   case Format::Pdef: return read_pdef(bytes, source, options);
   }
@@ -109,6 +115,37 @@ Mesh fit_to(const FormatInfo& fi, const Mesh& mesh, Notes* notes) {
   drop(out.normals, fi.normals, "normals");
   drop(out.colors, fi.colors, "vertex colours");
   drop(out.texcoords, fi.texcoords, "texture coordinates");
+  if (out.texcoords.empty()) out.texcoord_triangles.clear();
+  if (out.material && !fi.materials) {
+    out.material.reset();
+    if (notes)
+      notes->push_back(fmt::format("material and texture image dropped: {} cannot store them", fi.name));
+  }
+  return out;
+}
+
+// "..", an absolute path or a URI scheme ("http:", "file:"): a reference `files_beside` does not follow.
+bool leaves_folder(const std::filesystem::path& p, std::string_view reference) {
+  if (p.is_absolute() || p.has_root_name() || p.has_root_directory()) return true;
+  const std::size_t colon = reference.find(':');
+  if (colon != std::string_view::npos && colon > 1 && reference.find('/') > colon) return true;
+  return std::ranges::any_of(p, [](const std::filesystem::path& part) { return part == ".."; });
+}
+
+// "%20" → " ": URIs escape their bytes.
+std::string unescape(std::string_view reference) {
+  std::string out;
+  for (std::size_t i = 0; i < reference.size(); ++i) {
+    const auto hex = [&](std::size_t k) {
+      return std::isxdigit(static_cast<unsigned char>(reference[k])) != 0;
+    };
+    if (reference[i] == '%' && i + 2 < reference.size() && hex(i + 1) && hex(i + 2)) {
+      out.push_back(static_cast<char>(std::stoi(std::string(reference.substr(i + 1, 2)), nullptr, 16)));
+      i += 2;
+    } else {
+      out.push_back(reference[i]);
+    }
+  }
   return out;
 }
 
@@ -201,14 +238,39 @@ Result<LoadedMesh> read_mesh(std::string_view bytes, std::string_view source, co
   return LoadedMesh{std::move(mesh).value(), *format, bytes.size()};
 }
 
+Resolver files_beside(const std::filesystem::path& file, std::uint64_t max_bytes) {
+  return [folder = file.parent_path(), max_bytes](std::string_view reference) -> Result<std::string> {
+    const std::string name = unescape(reference);
+    const std::filesystem::path relative = std::filesystem::path(name).lexically_normal();
+    if (name.empty() || leaves_folder(relative, name))
+      return make_error(ErrorCode::UnsupportedFormat,
+                        "only files in the folder of the file that names them are read",
+                        clean_name(reference));
+    const std::filesystem::path path = folder / relative;
+    if (std::error_code ec; !std::filesystem::is_regular_file(path, ec))
+      return make_error(ErrorCode::Io, "no such file", source_name(path));
+    // A symbolic link out of the folder is not followed either.
+    std::error_code ec;
+    const std::filesystem::path real = std::filesystem::weakly_canonical(path, ec);
+    const std::filesystem::path base = std::filesystem::weakly_canonical(folder.empty() ? "." : folder, ec);
+    if (ec || std::ranges::mismatch(base, real).in1 != base.end())
+      return make_error(ErrorCode::UnsupportedFormat, "a link to a file outside the folder is not followed",
+                        source_name(path));
+    return read_file(path, max_bytes);
+  };
+}
+
 Result<LoadedMesh> read_mesh(const std::filesystem::path& path, const ReadOptions& options, Notes* notes) {
   Result<std::string> bytes = read_file(path);
   if (!bytes) return std::move(bytes).error();
-  return read_mesh(*bytes, source_name(path), options, notes);
+  if (options.resolver || !options.companions) return read_mesh(*bytes, source_name(path), options, notes);
+  ReadOptions beside = options;
+  beside.resolver = files_beside(path, options.max_companion_bytes);
+  return read_mesh(*bytes, source_name(path), beside, notes);
 }
 
-Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& path,
-                                const WriteOptions& options, Notes* notes) {
+Result<std::vector<OutputFile>> encode_files(const Mesh& mesh, const std::filesystem::path& path,
+                                             const WriteOptions& options, Notes* notes) {
   const std::string source = source_name(path);
   const std::optional<Format> format = options.format ? options.format : format_from_path(path);
   if (!format)
@@ -230,7 +292,34 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
                       fmt::format("{} cannot hold a point cloud (the mesh has no triangles)", fi.name),
                       source);
   const Mesh fitted = fit_to(fi, mesh, notes);
-  const drc::WriteOptions draco_options{.position_bits = options.draco_bits, .level = options.draco_level};
+  const drc::WriteOptions draco_options{.position_bits = options.draco_bits,
+                                        .color_bits = options.draco_color_bits,
+                                        .texcoord_bits = options.draco_uv_bits,
+                                        .level = options.draco_level};
+  // The files beside: the image (when its bytes were read; else the file refers to its old name), and
+  // for OBJ the material library.
+  std::vector<OutputFile> files(1);
+  files[0].path = path;
+  std::string image_name;
+  if (fitted.material && fitted.material->base_color_image && *format != Format::Gltf &&
+      *format != Format::Glb) {
+    const Image& image = *fitted.material->base_color_image;
+    const std::string stem = path.stem().string();
+    if (!image.bytes.empty() && image_mime_type(image.bytes)) {
+      image_name = stem + std::string(image_extension(image.mime_type));
+      files.push_back({path.parent_path() / image_name, image.bytes});
+    } else if (!image.uri.empty()) {
+      image_name = image.uri;
+      if (notes)
+        notes->push_back(fmt::format("texture image '{}' referred to, not written: its bytes were not read",
+                                     excerpt(image.uri)));
+    }
+  }
+  if (*format == Format::Obj && fitted.material) {
+    const std::string library = path.stem().string() + ".mtl";
+    files.insert(files.begin() + 1,
+                 OutputFile{path.parent_path() / library, obj::write_material_library(fitted, image_name)});
+  }
   if (*format == Format::Draco || options.draco_in_gltf) {
     if (Result<void> ok = drc::check(draco_options); !ok) {
       Error e = std::move(ok).error();
@@ -241,9 +330,13 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
 
   Result<std::string> bytes = [&]() -> Result<std::string> {
     switch (*format) {
-    case Format::Vrml: return vrml::write(fitted, {}, notes);
-    case Format::Obj: return obj::write(fitted, {}, notes);
-    case Format::Ply: return ply::write(fitted, {.binary = !options.ascii}, notes);
+    case Format::Vrml: return vrml::write(fitted, {.texture_url = image_name}, notes);
+    case Format::Obj:
+      return obj::write(fitted,
+                        {.material_library = fitted.material ? path.stem().string() + ".mtl" : std::string()},
+                        notes);
+    case Format::Ply:
+      return ply::write(fitted, {.binary = !options.ascii, .texture_file = image_name}, notes);
     case Format::Off: return off::write(fitted, notes);
     case Format::Stl: return stl::write(fitted, {.binary = !options.ascii}, notes);
     case Format::Gltf:
@@ -258,15 +351,23 @@ Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& p
     return make_error(ErrorCode::UnsupportedFormat, "unknown format", source);
   }();
   if (!bytes) return with_source(std::move(bytes).error(), source);
-  return bytes;
+  files[0].bytes = std::move(bytes).value();
+  return files;
+}
+
+Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& path,
+                                const WriteOptions& options, Notes* notes) {
+  Result<std::vector<OutputFile>> files = encode_files(mesh, path, options, notes);
+  if (!files) return std::move(files).error();
+  return std::move(files->front().bytes);
 }
 
 Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& path,
                                const WriteOptions& options, Notes* notes) {
-  Result<std::string> bytes = encode_mesh(mesh, path, options, notes);
-  if (!bytes) return std::move(bytes).error();
-  if (Result<void> written = write_file_atomic(path, *bytes); !written) return std::move(written).error();
-  return bytes->size();
+  Result<std::vector<OutputFile>> files = encode_files(mesh, path, options, notes);
+  if (!files) return std::move(files).error();
+  if (Result<void> written = write_files_atomic(*files); !written) return std::move(written).error();
+  return files->front().bytes.size();
 }
 
 namespace {
@@ -383,6 +484,7 @@ Result<ConvertReport> convert(const std::filesystem::path& in, const std::filesy
     return stream_pdef_as_ply(*bytes, in, out, read_options);
   ReadOptions read = read_options;
   read.format = *from;
+  if (!read.resolver && read.companions) read.resolver = files_beside(in, read.max_companion_bytes);
   Result<LoadedMesh> loaded = read_mesh(*bytes, source_name(in), read, notes);
   if (!loaded) return std::move(loaded).error();
   Result<std::size_t> written = write_mesh(loaded->mesh, out, write_options, notes);

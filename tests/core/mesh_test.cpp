@@ -1,3 +1,4 @@
+#include "pdeface/core/image.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/core/topology.hpp"
@@ -129,6 +130,128 @@ TEST(Components, UnionsLinkRootsWhateverTheOrder) {
     EXPECT_TRUE(validate(kept).ok());
     EXPECT_EQ(kept.vertex_count(), sample.vertex_count());
   }
+}
+
+} // namespace
+} // namespace pdeface
+
+// ---- texture coordinates per corner, materials, images -------------------------------------------------
+
+namespace pdeface {
+namespace {
+
+// Two triangles sharing the edge 0-2, the second giving vertex 0 a coordinate of its own: a seam.
+Mesh seam_square() {
+  Mesh m = test::unit_square();
+  m.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {0.5F, 0.5F}};
+  m.texcoord_triangles = m.triangles;
+  m.texcoord_triangles[1][0] = 4;
+  return m;
+}
+
+TEST(CornerTexcoords, ValidateChecksBothForms) {
+  EXPECT_TRUE(validate(seam_square()).ok());
+  Mesh m = seam_square();
+  m.texcoord_triangles.pop_back();
+  Result<void> r = validate(m, "m");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().message, "1 texture coordinate triangles for 2 triangles");
+  m = seam_square();
+  m.texcoord_triangles[1][2] = 5;
+  r = validate(m, "m");
+  ASSERT_FALSE(r.ok());
+  EXPECT_EQ(r.error().code, ErrorCode::IndexOutOfRange);
+  EXPECT_EQ(r.error().message, "triangle 1 refers to texture coordinate 5 of 5");
+  m = seam_square();
+  m.texcoord_triangles.clear(); // 5 per-vertex coordinates for 4 vertices
+  EXPECT_EQ(validate(m).error().message, "5 texture coordinates for 4 vertices");
+}
+
+TEST(CornerTexcoords, SplittingOnlyTheSeamVertices) {
+  const Mesh m = seam_square();
+  std::size_t split = 0;
+  const Mesh v = with_vertex_texcoords(m, &split);
+  EXPECT_EQ(split, 1u);
+  ASSERT_TRUE(validate(v).ok());
+  EXPECT_FALSE(v.has_corner_texcoords());
+  EXPECT_EQ(v.vertex_count(), 5u);
+  EXPECT_EQ(v.positions[4], m.positions[m.triangles[1][0]]) << "the copy shares the position";
+  EXPECT_EQ(corner_texcoords(v), corner_texcoords(m));
+  EXPECT_EQ(v.triangles[0], m.triangles[0]) << "the first corner keeps the vertex";
+  // Welding undoes it.
+  std::size_t merged = 0;
+  const Mesh w = weld_texcoord_seams(v, &merged);
+  EXPECT_EQ(merged, 1u);
+  ASSERT_TRUE(validate(w).ok());
+  EXPECT_EQ(w.positions, m.positions);
+  EXPECT_EQ(w.triangles, m.triangles);
+  EXPECT_EQ(corner_texcoords(w), corner_texcoords(m));
+  // Per-vertex coordinates and meshes without any are left as they are.
+  EXPECT_EQ(with_vertex_texcoords(v).positions.size(), 5u);
+  EXPECT_EQ(weld_texcoord_seams(test::unit_square()).positions.size(), 4u);
+}
+
+TEST(CornerTexcoords, CroppingAndDroppingPiecesKeepTheCorners) {
+  Mesh m = seam_square();
+  const std::size_t n = m.vertex_count();
+  // A far triangle of its own, dropped as a small piece.
+  m.positions.insert(m.positions.end(), {Vec3(10, 10, 0), Vec3(11, 10, 0), Vec3(10, 11, 0)});
+  m.triangles.insert(m.triangles.begin(),
+                     Triangle{static_cast<std::uint32_t>(n), static_cast<std::uint32_t>(n + 1),
+                              static_cast<std::uint32_t>(n + 2)});
+  m.texcoord_triangles.insert(m.texcoord_triangles.begin(), Triangle{0, 0, 0});
+  m.material = Material{.name = "skin", .base_color = Vec4f::Ones(), .base_color_image = {}};
+  ASSERT_TRUE(validate(m).ok());
+  const Mesh kept = drop_small_components(m, 0.6); // 3 of 7 vertices: fewer than 0.6 × 7
+  ASSERT_TRUE(validate(kept).ok());
+  EXPECT_EQ(kept.triangle_count(), 2u);
+  EXPECT_EQ(corner_texcoords(kept), corner_texcoords(seam_square()));
+  EXPECT_TRUE(kept.material);
+}
+
+TEST(Images, HeadersAreReadWithoutDecoding) {
+  // PNG: signature, IHDR 3 × 2.
+  std::string png("\x89PNG\r\n\x1a\n\0\0\0\x0dIHDR\0\0\0\x03\0\0\0\x02\x08\x02\0\0\0\0\0\0\0", 33);
+  Result<ImageInfo> info = inspect_image(png, "p.png");
+  ASSERT_TRUE(info.ok()) << info.error().to_string();
+  EXPECT_EQ(info->mime_type, "image/png");
+  EXPECT_EQ(info->width, 3u);
+  EXPECT_EQ(info->height, 2u);
+  // JPEG: SOI, an APP0 segment, then SOF0 of 2400 × 1600.
+  std::string jpeg("\xFF\xD8\xFF\xE0\x00\x04xx\xFF\xC0\x00\x08\x08\x06\x40\x09\x60\x03", 19);
+  info = inspect_image(jpeg, "j.jpg");
+  ASSERT_TRUE(info.ok()) << info.error().to_string();
+  EXPECT_EQ(info->mime_type, "image/jpeg");
+  EXPECT_EQ(info->width, 2400u);
+  EXPECT_EQ(info->height, 1600u);
+  // A bomb: 65535 × 65535 declared in a few bytes.
+  jpeg[13] = jpeg[14] = jpeg[15] = jpeg[16] = '\xFF';
+  Result<ImageInfo> bomb = inspect_image(jpeg, "j.jpg");
+  ASSERT_FALSE(bomb.ok());
+  EXPECT_EQ(bomb.error().code, ErrorCode::CountTooLarge);
+  EXPECT_EQ(bomb.error().where.byte, 13u);
+  // Cut inside the APP0 segment; a scan before any frame; not an image.
+  EXPECT_EQ(inspect_image(jpeg.substr(0, 6), "j.jpg").error().code, ErrorCode::Truncated);
+  EXPECT_EQ(inspect_image(std::string("\xFF\xD8\xFF\xDA\x00\x02", 6), "j.jpg").error().code,
+            ErrorCode::Malformed);
+  EXPECT_EQ(inspect_image("GIF89a", "g.gif").error().code, ErrorCode::UnsupportedFormat);
+  png[19] = '\0'; // width 0
+  EXPECT_EQ(inspect_image(png, "p.png").error().code, ErrorCode::Malformed);
+  EXPECT_EQ(inspect_image(png.substr(0, 20), "p.png").error().code, ErrorCode::Truncated);
+}
+
+TEST(Images, ResolvingNotesWhatIsMissing) {
+  Notes notes;
+  Result<Image> image = resolve_image({}, "face.jpg", "f.obj", &notes);
+  ASSERT_TRUE(image.ok());
+  EXPECT_TRUE(image->bytes.empty());
+  EXPECT_EQ(image->uri, "face.jpg");
+  ASSERT_EQ(notes.size(), 1u);
+  const Resolver gif = [](std::string_view) -> Result<std::string> { return std::string("GIF89a"); };
+  image = resolve_image(gif, "face.gif", "f.obj", &notes);
+  ASSERT_TRUE(image.ok());
+  EXPECT_TRUE(image->bytes.empty());
+  EXPECT_EQ(notes.size(), 2u);
 }
 
 } // namespace

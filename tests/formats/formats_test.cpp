@@ -104,4 +104,52 @@ TEST(Formats, ConvertReportsBothSides) {
 }
 
 } // namespace
+// The files a mesh file refers to are read beside it, and nowhere else.
+TEST(FilesBeside, OnlyInsideTheFolderAndWithinTheCap) {
+  const test::TempDir dir;
+  const std::filesystem::path inner = dir.path() / "scan";
+  std::filesystem::create_directories(inner / "sub");
+  ASSERT_TRUE(write_file_atomic(inner / "m.mtl", "newmtl a\n").ok());
+  ASSERT_TRUE(write_file_atomic(inner / "sub" / "skin photo.jpg", "jpeg").ok());
+  ASSERT_TRUE(write_file_atomic(dir.path() / "secret.txt", "secret").ok());
+  std::filesystem::create_symlink(dir.path() / "secret.txt", inner / "link.jpg");
+  const Resolver resolve = files_beside(inner / "face.obj", 16);
+  EXPECT_EQ(*resolve("m.mtl"), "newmtl a\n");
+  EXPECT_EQ(*resolve("./sub/skin%20photo.jpg"), "jpeg");
+  for (const char* outside : {"../secret.txt", "sub/../../secret.txt", "/etc/passwd", "file:///etc/passwd",
+                              "http://example.org/a.jpg", "link.jpg", ""}) {
+    const Result<std::string> bytes = resolve(outside);
+    ASSERT_FALSE(bytes.ok()) << outside;
+    EXPECT_EQ(bytes.error().code, ErrorCode::UnsupportedFormat)
+        << outside << ": " << bytes.error().to_string();
+  }
+  EXPECT_EQ(resolve("missing.jpg").error().code, ErrorCode::Io);
+  EXPECT_EQ(files_beside(inner / "face.obj", 4)("m.mtl").error().code, ErrorCode::CountTooLarge);
+}
+
+// An OBJ with its material library and image, written as one set of files and read back from them.
+TEST(FilesBeside, ObjWithMaterialWritesAndReadsItsFiles) {
+  const test::TempDir dir;
+  Mesh mesh = sample_face({.spacing_mm = 8.0});
+  mesh.texcoords.assign(mesh.vertex_count(), Vec2f(0.5F, 0.5F));
+  const Result<std::string> png = read_file(test::fixtures() / "obj" / "texture.png");
+  ASSERT_TRUE(png.ok());
+  mesh.material =
+      Material{.name = "skin",
+               .base_color = Vec4f::Ones(),
+               .base_color_image = Image{.bytes = *png, .mime_type = "image/png", .uri = "t.png"}};
+  ASSERT_TRUE(write_mesh(mesh, dir.path() / "face.obj").ok());
+  EXPECT_TRUE(std::filesystem::exists(dir.path() / "face.mtl"));
+  EXPECT_EQ(*read_file(dir.path() / "face.png"), *png);
+  Notes notes;
+  const Result<LoadedMesh> back = read_mesh(dir.path() / "face.obj", {}, &notes);
+  ASSERT_TRUE(back.ok()) << back.error().to_string();
+  ASSERT_TRUE(back->mesh.material && back->mesh.material->base_color_image);
+  EXPECT_EQ(back->mesh.material->base_color_image->bytes, *png);
+  EXPECT_TRUE(notes.empty()) << notes.front();
+  // Into a folder that does not exist: nothing is written, none of the three files.
+  EXPECT_FALSE(write_mesh(mesh, dir.path() / "none" / "face.obj").ok());
+  EXPECT_FALSE(std::filesystem::exists(dir.path() / "none"));
+}
+
 } // namespace pdeface::formats

@@ -4,6 +4,7 @@
 
 #include "pdeface/formats/formats.hpp"
 
+#include "format_test_support.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface_test.hpp"
 
@@ -84,6 +85,71 @@ TEST(RoundTrip, AttributesSurviveWhereBothFormatsHoldThem) {
         EXPECT_LE(worst, 0.5F / 255.0F + 1e-6F) << ext; // 8-bit colours at worst
       }
     }
+  }
+}
+
+// A face with a photo: texture coordinates with a seam (per corner), a material and its image. What each
+// format keeps of them, written with the files beside (`encode_files`) and read back through a resolver
+// over those files:
+//   VRML, OBJ, glTF, GLB  the coordinates per corner (seam kept, vertices as they were), the material, the
+//   image PLY                   the coordinates per vertex (the seam vertex split: one vertex more), the
+//   image Draco                 the coordinates (quantised to 12 bits; seam split, then welded on reading),
+//   no material OFF, STL              none of it (notes say so)
+TEST(RoundTrip, TextureSeamsMaterialAndImageWhereTheFormatHoldsThem) {
+  Mesh face = sample_face({.spacing_mm = 6.0});
+  face.texcoords.clear();
+  for (const Vec3& p : face.positions)
+    face.texcoords.emplace_back(static_cast<float>(p.x() / 256 + 0.5), static_cast<float>(p.y() / 256 + 0.5));
+  face.texcoord_triangles = face.triangles;
+  // A seam: the first corner of a triangle whose vertex other triangles share gets a coordinate of its own.
+  std::vector<int> uses(face.vertex_count(), 0);
+  for (const Triangle& t : face.triangles)
+    for (std::uint32_t v : t)
+      ++uses[v];
+  const auto seam = std::ranges::find_if(face.triangles, [&](const Triangle& t) { return uses[t[0]] > 1; });
+  face.texcoords.emplace_back(0.125F, 0.25F);
+  face.texcoord_triangles[static_cast<std::size_t>(seam - face.triangles.begin())][0] =
+      static_cast<std::uint32_t>(face.texcoords.size() - 1);
+  const std::string png = *read_file(test::fixtures() / "obj" / "texture.png");
+  face.material =
+      Material{.name = "skin",
+               .base_color = Vec4f::Ones(),
+               .base_color_image = Image{.bytes = png, .mime_type = "image/png", .uri = "face.png"}};
+  ASSERT_TRUE(validate(face).ok());
+  const std::vector<Vec2f> corners = corner_texcoords(face);
+
+  for (const char* ext : kWritable) {
+    SCOPED_TRACE(ext);
+    const std::string name = std::string("out/face") + ext;
+    Notes notes;
+    Result<std::vector<OutputFile>> files = encode_files(face, name, {}, &notes);
+    ASSERT_TRUE(files.ok()) << files.error().to_string();
+    const Resolver resolve = [&](std::string_view reference) -> Result<std::string> {
+      for (const OutputFile& f : *files)
+        if (f.path == std::filesystem::path("out") / std::string(reference)) return f.bytes;
+      return make_error(ErrorCode::Io, "no such file", std::string(reference));
+    };
+    const Result<LoadedMesh> back = read_mesh(files->front().bytes, name, {.resolver = resolve});
+    ASSERT_TRUE(back.ok()) << back.error().to_string();
+    const Mesh& m = back->mesh;
+    const FormatInfo& fi = info(*format_from_path(name));
+    const std::string_view e = ext;
+    EXPECT_EQ(m.has_texcoords(), fi.texcoords);
+    EXPECT_EQ(m.material.has_value(), fi.materials && e != ".drc");
+    if (fi.materials) {
+      ASSERT_TRUE(m.material && m.material->base_color_image);
+      EXPECT_EQ(m.material->base_color_image->bytes, png) << "the image's bytes unchanged";
+      EXPECT_EQ(m.material->base_color_image->mime_type, "image/png");
+    }
+    if (!fi.texcoords) {
+      EXPECT_TRUE(test::has_note(notes, "texture coordinates dropped"));
+      continue;
+    }
+    EXPECT_EQ(m.triangle_count(), face.triangle_count());
+    if (e == ".drc") continue; // quantised and reordered by the edgebreaker
+    EXPECT_EQ(m.vertex_count(), face.vertex_count() + (e == ".ply" ? 1 : 0)) << "PLY: the seam vertex split";
+    EXPECT_EQ(m.has_corner_texcoords(), e != ".ply");
+    EXPECT_EQ(corner_texcoords(m), corners);
   }
 }
 

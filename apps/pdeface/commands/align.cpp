@@ -29,10 +29,12 @@ int run_align(const AlignArgs& args) {
   if (!aligned) return fail(aligned.error());
 
   Notes notes;
-  Result<std::string> mesh = formats::encode_mesh(aligned->canonical, args.out, args.write, &notes);
+  // The mesh and what it refers to (an OBJ's material library and image, ...), then the other outputs.
+  Result<std::vector<OutputFile>> mesh =
+      formats::encode_files(aligned->canonical, args.out, args.write, &notes);
   print_notes(notes);
   if (!mesh) return fail(mesh.error());
-  std::vector<OutputFile> outputs{{args.out, *std::move(mesh)}};
+  std::vector<OutputFile> outputs = *std::move(mesh);
   if (!args.landmarks_out.empty()) outputs.push_back({args.landmarks_out, aligned->landmarks_json});
   if (!args.preview.empty()) outputs.push_back({args.preview, aligned->preview_svg});
   if (Result<void> ok = write_outputs(outputs); !ok) return fail(ok.error());

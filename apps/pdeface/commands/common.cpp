@@ -78,6 +78,14 @@ void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
   cmd->add_option("--draco-level", write.draco_level, "Draco compression level (0..10; 0 keeps vertex order)")
       ->check(CLI::Range(0, 10))
       ->capture_default_str();
+  cmd->add_option("--draco-uv-bits", write.draco_uv_bits,
+                  "Draco texture coordinate quantisation bits (1..24; draco_encoder -qt)")
+      ->check(CLI::Range(1, 24))
+      ->capture_default_str();
+  cmd->add_option("--draco-color-bits", write.draco_color_bits,
+                  "Draco colours as normalised integers of 8 or 16 bits")
+      ->check(CLI::IsMember({8, 16}))
+      ->capture_default_str();
   cmd->add_flag("--draco", write.draco_in_gltf, "GLB output: compress with KHR_draco_mesh_compression");
   cmd->add_flag("--ascii", write.ascii, "PLY and STL output: ASCII instead of binary");
 }

@@ -17,10 +17,12 @@ struct ConvertRequest {
   std::string from;
   std::string to;
   formats::WriteOptions write;
+  bool no_companions = false;
 };
 
 int run_convert(ConvertRequest request) {
   formats::ReadOptions read;
+  read.companions = !request.no_companions;
   for (auto [name, format] : {std::pair{&request.from, &read.format}, {&request.to, &request.write.format}}) {
     if (name->empty()) continue;
     Result<formats::Format> parsed = formats::format_from_name(*name);
@@ -57,6 +59,9 @@ void convert_command(CLI::App& app, int& status) {
   cmd->add_option("output", r.out, "File to write (replaced atomically)")->required();
   cmd->add_option("--from", r.from, "Input format when the extension is misleading (e.g. ply)");
   cmd->add_option("--to", r.to, "Output format when the extension is misleading (e.g. glb)");
+  cmd->add_flag("--no-companions", r.no_companions,
+                "Read no file the input refers to (an OBJ's material library and image, a glTF's or VRML's "
+                "image)");
   add_write_options(cmd, r.write);
   cmd->callback([request, &status] { status = run_convert(*request); });
 }

@@ -269,7 +269,17 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (!decoded) return std::move(decoded).error();
   for (const std::string& note : mine)
     notes->push_back(fmt::format("{}: {}", source, note));
-  return std::move(decoded->mesh);
+  if (!decoded->mesh.has_texcoords()) return std::move(decoded->mesh);
+  // Points that repeat a position, normal and colour differ in their texture coordinate only (a seam the
+  // writer split): one vertex again, the texture coordinates per corner.
+  std::size_t merged = 0;
+  Mesh mesh = weld_texcoord_seams(decoded->mesh, &merged);
+  if (merged > 0 && notes)
+    notes->push_back(
+        fmt::format("{}: {} points on texture seams merged with their twins (texture coordinates "
+                    "per corner)",
+                    source, merged));
+  return mesh;
 }
 
 } // namespace pdeface::drc

@@ -180,9 +180,15 @@ Result<void> check(const WriteOptions& options) {
 
 namespace detail {
 
-Result<Encoded> encode(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
+Result<Encoded> encode(const Mesh& input, const WriteOptions& options, Notes* notes) {
   if (Result<void> ok = check(options); !ok) return std::move(ok).error();
-  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
+  if (Result<void> valid = check_writable(input); !valid) return std::move(valid).error();
+  // One TEX_COORD value per point: seam vertices split (same position, so the edgebreaker's connectivity,
+  // which follows positions, is the same; the reader welds them again).
+  std::size_t split = 0;
+  const Mesh mesh = with_vertex_texcoords(input, &split);
+  if (split > 0 && notes)
+    notes->push_back(fmt::format("{} vertices on texture seams written once per texture coordinate", split));
   if (auto e = check_span<Vec3>(mesh.positions, "positions", mesh)) return std::move(*e);
   if (auto e = check_span<Vec2f>(mesh.texcoords, "texture coordinates", mesh)) return std::move(*e);
   if (mesh.vertex_count() > std::numeric_limits<std::int32_t>::max())

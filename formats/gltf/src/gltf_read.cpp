@@ -4,6 +4,7 @@
 #include "accessors.hpp"
 #include "container.hpp"
 #include "gltf_constants.hpp"
+#include "pdeface/core/image.hpp"
 #include "pdeface/core/text.hpp"
 #include "pdeface/draco/detail.hpp"
 #include "pdeface/gltf/gltf.hpp"
@@ -36,17 +37,25 @@ struct Piece {
   std::vector<Vec2f> texcoords;
   std::vector<Triangle> triangles;
   bool points = false;
+  int material = -1;
 };
 
-// Images are never decoded: we read geometry only.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
-                void*) {
+// Images are never decoded: their encoded bytes (a buffer view's, a data URI's) are kept as they are, by
+// image index, for the material.
+bool keep_image(tinygltf::Image*, const int index, std::string*, std::string*, int, int,
+                const unsigned char* bytes, int size, void* user_data) {
+  auto& images = *static_cast<std::vector<std::string>*>(user_data);
+  if (index < 0 || size < 0) return true;
+  if (images.size() <= static_cast<std::size_t>(index)) images.resize(static_cast<std::size_t>(index) + 1);
+  images[static_cast<std::size_t>(index)].assign(reinterpret_cast<const char*>(bytes),
+                                                 static_cast<std::size_t>(size));
   return true;
 }
 
-Result<tinygltf::Model> load(const Container& c, std::string_view source, Notes* notes) {
+Result<tinygltf::Model> load(const Container& c, std::string_view source, std::vector<std::string>& images,
+                             Notes* notes) {
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetImageLoader(&keep_image, &images);
   tinygltf::Model model;
   std::string err, warn;
   bool ok = false;
@@ -89,9 +98,11 @@ std::vector<Triangle> triangulate(int mode, const std::vector<std::uint32_t>& v)
 class SceneReader {
 public:
   SceneReader(const tinygltf::Model& model, const Container& container, const Preflight& preflight,
-              std::string_view source, Notes* notes)
-      : model_(model), accessors_(model, container, preflight.buffer_views, source), source_(source),
-        notes_(notes), instanced_limit_(kMaxInstancedPerByte * container.bytes.size()),
+              const std::vector<std::string>& images, const Resolver& resolve, std::string_view source,
+              Notes* notes)
+      : model_(model), container_(container), images_(images), resolve_(resolve),
+        accessors_(model, container, preflight.buffer_views, source), source_(source), notes_(notes),
+        instanced_limit_(kMaxInstancedPerByte * container.bytes.size()),
         mesh_seen_(model.meshes.size(), false) {}
 
   Result<Mesh> run() {
@@ -297,6 +308,7 @@ private:
                                  instanced_limit_, kMaxInstancedPerByte));
     }
     pieces_.push_back(place(*a, world, mode, where));
+    pieces_.back().material = p.material;
     return std::nullopt;
   }
 
@@ -391,7 +403,95 @@ private:
     read_units(mesh);
     if (Result<void> valid = validate(mesh, source_); !valid) return std::move(valid).error();
     if (mesh.positions.empty()) return error(ErrorCode::Empty, "the scene's primitives hold no vertices");
+    // glTF's (0, 0) is the image's top left, ours its bottom left (OBJ's, VRML's).
+    for (Vec2f& t : mesh.texcoords)
+      t.y() = 1.0F - t.y();
+    if (Result<void> m = read_material(mesh); !m) return std::move(m).error();
+    if (mesh.has_texcoords()) {
+      // Vertices a writer split at texture seams (ours among them) joined again: one vertex, a texture
+      // coordinate per corner, as the shape's connectivity is.
+      std::size_t merged = 0;
+      mesh = weld_texcoord_seams(mesh, &merged);
+      if (merged > 0)
+        note(fmt::format(
+            "{} vertices that repeat another's position, normal and colour merged with it (texture "
+            "coordinates per corner)",
+            merged));
+    }
     return mesh;
+  }
+
+  // The material of the first primitive (a face is one): base colour factor and image.
+  Result<void> read_material(Mesh& mesh) {
+    int index = -1;
+    for (const Piece& p : pieces_) {
+      if (p.material < 0) continue;
+      if (index < 0) index = p.material;
+      if (p.material != index) note("materials of primitives after the first dropped: a mesh holds one");
+    }
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.materials.size()) return {};
+    const tinygltf::Material& m = model_.materials[static_cast<std::size_t>(index)];
+    Material material;
+    material.name = m.name;
+    const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
+    if (f.size() == 4 && std::ranges::all_of(f, [](double x) { return std::isfinite(x); }))
+      material.base_color = Vec4f(static_cast<float>(f[0]), static_cast<float>(f[1]),
+                                  static_cast<float>(f[2]), static_cast<float>(f[3]));
+    const int texture = m.pbrMetallicRoughness.baseColorTexture.index;
+    if (texture >= 0) {
+      if (m.pbrMetallicRoughness.baseColorTexture.texCoord != 0)
+        note("base colour texture dropped: it maps through TEXCOORD_1 or above, which we do not read");
+      else if (static_cast<std::size_t>(texture) >= model_.textures.size())
+        return error(ErrorCode::IndexOutOfRange, fmt::format("materials[{}] refers to texture {} of {}",
+                                                             index, texture, model_.textures.size()));
+      else if (Result<std::optional<Image>> image = read_image(model_.textures[texture].source); !image)
+        return std::move(image).error();
+      else
+        material.base_color_image = std::move(image).value();
+    }
+    mesh.material = std::move(material);
+    return {};
+  }
+
+  // Image `index`: embedded (a buffer view, a data URI), else through the resolver.
+  Result<std::optional<Image>> read_image(int index) {
+    if (index < 0) return std::optional<Image>();
+    if (static_cast<std::size_t>(index) >= model_.images.size())
+      return error(ErrorCode::IndexOutOfRange,
+                   fmt::format("a texture refers to image {} of {}", index, model_.images.size()));
+    const tinygltf::Image& gi = model_.images[static_cast<std::size_t>(index)];
+    const bool embedded = gi.bufferView >= 0 || gi.uri.starts_with("data:");
+    if (!embedded) {
+      Result<Image> image = resolve_image(resolve_, gi.uri, source_, notes_);
+      if (!image) return std::move(image).error();
+      return std::optional<Image>(std::move(image).value());
+    }
+    Image image;
+    if (static_cast<std::size_t>(index) < images_.size())
+      image.bytes = images_[static_cast<std::size_t>(index)];
+    if (image.bytes.empty()) {
+      note(fmt::format("image {} dropped: it holds no bytes", index));
+      return std::optional<Image>();
+    }
+    if (!image_mime_type(image.bytes)) {
+      note(fmt::format("image {} dropped: neither JPEG nor PNG", index));
+      return std::optional<Image>();
+    }
+    Result<ImageInfo> info = inspect_image(image.bytes, source_);
+    if (!info) {
+      Error e = std::move(info).error();
+      e.message = fmt::format("image {}: {}", index, e.message);
+      // Where the image starts in a GLB's BIN chunk, when it lies there.
+      if (gi.bufferView >= 0 && container_.glb && e.where.byte &&
+          static_cast<std::size_t>(gi.bufferView) < model_.bufferViews.size() &&
+          model_.bufferViews[gi.bufferView].buffer == 0)
+        e.where.byte = *e.where.byte + container_.bin_offset + model_.bufferViews[gi.bufferView].byteOffset;
+      else
+        e.where = {};
+      return e;
+    }
+    image.mime_type = info->mime_type;
+    return std::optional<Image>(std::move(image));
   }
 
   void read_units(Mesh& mesh) {
@@ -407,6 +507,9 @@ private:
   }
 
   const tinygltf::Model& model_;
+  const Container& container_;
+  const std::vector<std::string>& images_;
+  const Resolver& resolve_;
   Accessors accessors_;
   std::string_view source_;
   Notes* notes_;
@@ -420,7 +523,7 @@ private:
 
 } // namespace
 
-Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
+Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes, const Resolver& resolve) {
   if (bytes.size() > std::numeric_limits<std::uint32_t>::max())
     return make_error(ErrorCode::CountTooLarge, "more than 4 GiB: glTF files are limited to 32-bit lengths",
                       std::string(source));
@@ -428,9 +531,10 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (!container) return std::move(container).error();
   Result<Preflight> checked = preflight(*container, source);
   if (!checked) return std::move(checked).error();
-  Result<tinygltf::Model> model = load(*container, source, notes);
+  std::vector<std::string> images;
+  Result<tinygltf::Model> model = load(*container, source, images, notes);
   if (!model) return std::move(model).error();
-  return SceneReader(*model, *container, *checked, source, notes).run();
+  return SceneReader(*model, *container, *checked, images, resolve, source, notes).run();
 }
 
 } // namespace pdeface::gltf

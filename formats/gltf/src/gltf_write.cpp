@@ -2,6 +2,7 @@
 // tinygltf as GLB or as .gltf with the buffer in a data URI.
 #include "gltf_constants.hpp"
 
+#include "pdeface/core/image.hpp"
 #include "pdeface/core/text.hpp"
 #include "pdeface/draco/detail.hpp"
 #include "pdeface/gltf/gltf.hpp"
@@ -9,7 +10,9 @@
 #include <fmt/format.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
@@ -254,6 +257,56 @@ Result<tinygltf::Primitive> draco_primitive(ModelBuilder& b, const Mesh& mesh,
   return p;
 }
 
+// The material, and its image embedded in buffer 0 (the GLB's BIN chunk, or the .gltf's data URI), as the
+// primitive's: base colour factor and texture, not metallic (a face is not metal; glTF's default would be),
+// fully rough.
+void add_material(ModelBuilder& b, const Mesh& mesh, tinygltf::Primitive& p, Notes* notes) {
+  if (!mesh.material) return;
+  const Material& m = *mesh.material;
+  tinygltf::Model& model = b.model();
+  tinygltf::Material out;
+  out.name = clean_name(m.name);
+  out.pbrMetallicRoughness.baseColorFactor = {m.base_color[0], m.base_color[1], m.base_color[2],
+                                              m.base_color[3]};
+  for (double& c : out.pbrMetallicRoughness.baseColorFactor)
+    c = std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 1.0;
+  out.pbrMetallicRoughness.metallicFactor = 0.0;
+  out.pbrMetallicRoughness.roughnessFactor = 1.0;
+  if (m.base_color[3] < 1.0F) out.alphaMode = "BLEND";
+  auto note = [&](std::string text) {
+    if (notes) notes->push_back(std::move(text));
+  };
+  if (m.base_color_image) {
+    const Image& image = *m.base_color_image;
+    const std::optional<std::string_view> mime = image_mime_type(image.bytes);
+    if (image.bytes.empty()) {
+      note(fmt::format("texture image '{}' not embedded: its bytes were not read", excerpt(image.uri)));
+    } else if (!mime) {
+      note("texture image not embedded: glTF holds JPEG and PNG images only");
+    } else if (!mesh.has_texcoords()) {
+      note("texture image not embedded: the mesh has no texture coordinates to map it");
+    } else {
+      tinygltf::Image gi;
+      gi.name = clean_name(std::filesystem::path(image.uri).stem().string());
+      gi.mimeType = std::string(*mime);
+      gi.bufferView = b.add_view(image.bytes.data(), image.bytes.size(), 0);
+      model.images.push_back(std::move(gi));
+      tinygltf::Sampler sampler;
+      sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+      sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+      model.samplers.push_back(sampler);
+      tinygltf::Texture texture;
+      texture.source = static_cast<int>(model.images.size()) - 1;
+      texture.sampler = static_cast<int>(model.samplers.size()) - 1;
+      model.textures.push_back(texture);
+      out.pbrMetallicRoughness.baseColorTexture.index = static_cast<int>(model.textures.size()) - 1;
+      out.pbrMetallicRoughness.baseColorTexture.texCoord = 0;
+    }
+  }
+  model.materials.push_back(std::move(out));
+  p.material = static_cast<int>(model.materials.size()) - 1;
+}
+
 } // namespace
 
 Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
@@ -263,6 +316,16 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
 
   Mesh out = mesh;
   if (!mesh.is_point_cloud() || mesh.has_normals()) out.normals = unit_normals(mesh, notes);
+  // One texture coordinate per vertex: seam vertices written once per coordinate (normals computed before,
+  // so both copies shade alike). glTF's (0, 0) is the image's top left, ours its bottom left (OBJ's).
+  std::size_t split = 0;
+  out = with_vertex_texcoords(out, &split);
+  if (split > 0 && notes)
+    notes->push_back(fmt::format("{} vertices on texture seams written once per texture coordinate ({} in "
+                                 "all): glTF holds one per vertex",
+                                 split, out.vertex_count()));
+  for (Vec2f& t : out.texcoords)
+    t.y() = 1.0F - t.y();
   ModelBuilder builder;
   tinygltf::Primitive primitive;
   if (options.draco && mesh.is_point_cloud() && notes)
@@ -276,6 +339,7 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
     note_float_rounding(mesh, notes);
     primitive = plain_primitive(builder, out);
   }
+  add_material(builder, out, primitive, notes);
   return builder.finish(std::move(primitive), mesh, options.binary);
 }
 

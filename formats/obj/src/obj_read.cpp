@@ -6,6 +6,7 @@
 
 #include "pdeface/obj/obj.hpp"
 
+#include "pdeface/core/image.hpp"
 #include "pdeface/core/text.hpp"
 #include "pdeface/text/scanner.hpp"
 
@@ -16,6 +17,8 @@
 #include <cfloat>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,6 +54,10 @@ struct Survey {
   std::string name;                 // of the first 'o'
   std::vector<std::string> ignored; // the first kMaxIgnoredNamed kinds of statement not read
   std::size_t more_ignored = 0;     // statements of other kinds not read
+  std::string mtllib;               // the first material library named
+  Location mtllib_at;
+  std::vector<std::string> materials; // the names `usemtl` gives, the first kMaxIgnoredNamed of them
+  std::size_t more_materials = 0;
 };
 
 class Validator {
@@ -132,6 +139,23 @@ private:
           survey_.name, [](char c) { return c == '\r' || c == '\v' || c == '\f'; }, ' ');
       while (!survey_.name.empty() && std::isspace(static_cast<unsigned char>(survey_.name.back())))
         survey_.name.pop_back();
+    }
+    if (word == "mtllib" || word == "usemtl") {
+      const Token first = scan.next_on_line();
+      std::string_view argument =
+          first.empty() ? std::string_view() : text_.substr(first.offset, end - first.offset);
+      while (!argument.empty() && std::isspace(static_cast<unsigned char>(argument.back())))
+        argument.remove_suffix(1);
+      if (word == "mtllib" && survey_.mtllib.empty() && !argument.empty()) {
+        survey_.mtllib = argument;
+        survey_.mtllib_at = keyword.location();
+      } else if (word == "usemtl" && !argument.empty() &&
+                 std::ranges::find(survey_.materials, argument) == survey_.materials.end()) {
+        if (survey_.materials.size() < kMaxIgnoredNamed)
+          survey_.materials.emplace_back(argument);
+        else
+          ++survey_.more_materials;
+      }
     }
     const bool known =
         word.empty() || word == "o" || word == "g" || word == "s" || word == "usemtl" || word == "mtllib";
@@ -378,6 +402,8 @@ public:
       ++conflicts_;
     }
   }
+  // Whether corners disagree, every corner having a value: a texture's seams.
+  [[nodiscard]] bool seams() const { return conflicts_ != 0 && missing_ == 0; }
   // Whether every vertex has one value and no corner disagrees.
   [[nodiscard]] bool consistent() const {
     return conflicts_ == 0 && missing_ == 0 && std::ranges::any_of(slot_, [](int s) { return s >= 0; });
@@ -414,9 +440,144 @@ private:
   std::size_t missing_ = 0;
 };
 
+// A material library's `map_Kd` options (before the file name) and how many values each takes at most.
+constexpr std::array<std::pair<std::string_view, int>, 12> kMapOptions{{{"-blendu", 1},
+                                                                        {"-blendv", 1},
+                                                                        {"-bm", 1},
+                                                                        {"-boost", 1},
+                                                                        {"-cc", 1},
+                                                                        {"-clamp", 1},
+                                                                        {"-imfchan", 1},
+                                                                        {"-mm", 2},
+                                                                        {"-o", 3},
+                                                                        {"-s", 3},
+                                                                        {"-t", 3},
+                                                                        {"-texres", 1}}};
+
+// The file name after `map_Kd` and its options: the rest of the line.
+std::string_view map_file(std::string_view rest) {
+  auto token = [&rest]() {
+    while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.front())))
+      rest.remove_prefix(1);
+    const std::size_t end = std::min(rest.size(), rest.find_first_of(" \t\r\v\f"));
+    return rest.substr(0, end);
+  };
+  for (;;) {
+    const std::string_view saved = rest;
+    const std::string_view word = token();
+    const auto* option = std::ranges::find(kMapOptions, word, &std::pair<std::string_view, int>::first);
+    if (option == kMapOptions.end()) {
+      rest = saved;
+      break;
+    }
+    rest.remove_prefix(word.size());
+    for (int k = 0; k < option->second; ++k) {
+      const std::string_view before = rest;
+      const std::string_view value = token();
+      if (value != "on" && value != "off" && !text::parse_double(value)) {
+        rest = before;
+        break;
+      }
+      rest.remove_prefix(value.size());
+    }
+  }
+  while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.front())))
+    rest.remove_prefix(1);
+  while (!rest.empty() && std::isspace(static_cast<unsigned char>(rest.back())))
+    rest.remove_suffix(1);
+  return rest;
+}
+
+// Material `wanted` (the first when empty) of the library `mtllib`, obtained through `resolve`: its `Kd`
+// (as the base colour when it has no `map_Kd`: a viewer shows the photo, not the photo times Kd), `d` and
+// `map_Kd` (relative to the library's folder). A library or image that cannot be read is a note.
+Result<std::optional<Material>> read_material(const Resolver& resolve, std::string_view mtllib,
+                                              std::string_view wanted, std::string_view source,
+                                              Notes* notes) {
+  auto note = [&](std::string message) {
+    if (notes) notes->push_back(std::move(message));
+  };
+  if (!resolve) {
+    note(fmt::format("{}: material library '{}' not read: reading from memory, no folder to find it in",
+                     source, excerpt(mtllib)));
+    return std::optional<Material>();
+  }
+  Result<std::string> library = resolve(mtllib);
+  if (!library) {
+    note(fmt::format("{}: material library '{}' not read ({}): no material", source, excerpt(mtllib),
+                     library.error().message));
+    return std::optional<Material>();
+  }
+  const std::string library_name = clean_name(mtllib);
+  std::optional<Material> material;
+  std::optional<Vec3f> kd;
+  std::string map;
+  float alpha = 1.0F;
+  bool in_wanted = false, done = false;
+  std::string_view rest = *library;
+  for (std::uint64_t line = 1; !rest.empty() && !done; ++line) {
+    const std::size_t newline = std::min(rest.size(), rest.find('\n'));
+    std::string_view statement = rest.substr(0, newline);
+    rest.remove_prefix(std::min(rest.size(), newline + 1));
+    statement = statement.substr(0, std::min(statement.size(), statement.find('#')));
+    Scanner scan(statement, 0, line);
+    const Token keyword = scan.next_on_line();
+    if (keyword.text == "newmtl") {
+      const Token name = scan.next_on_line();
+      if (in_wanted) {
+        done = true;
+        break;
+      }
+      in_wanted = wanted.empty() || name.text == wanted;
+      if (in_wanted) material.emplace().name = name.text;
+      continue;
+    }
+    if (!in_wanted) continue;
+    if (keyword.text == "Kd" || keyword.text == "d") {
+      std::array<float, 3> v{};
+      std::size_t count = 0;
+      for (Token t = scan.next_on_line(); !t.empty() && count < 3; t = scan.next_on_line()) {
+        const std::optional<double> x = text::parse_double(t.text);
+        if (!x || !std::isfinite(*x)) {
+          count = 0;
+          break;
+        }
+        v[count++] = static_cast<float>(std::clamp(*x, 0.0, 1.0));
+      }
+      if (keyword.text == "Kd" && count == 3)
+        kd = Vec3f(v[0], v[1], v[2]);
+      else if (keyword.text == "d" && count == 1)
+        alpha = v[0];
+      else
+        note(fmt::format("{}:{}: {} ignored: expected {} numbers", library_name, line, keyword.text,
+                         keyword.text == "Kd" ? 3 : 1));
+    } else if (keyword.text == "map_Kd") {
+      map = map_file(statement.substr(std::min(statement.size(), keyword.offset + keyword.text.size())));
+    }
+  }
+  if (!material) {
+    note(fmt::format("{}: material '{}' not found in '{}': no material", source, excerpt(wanted),
+                     library_name));
+    return material;
+  }
+  material->base_color = Vec4f(1.0F, 1.0F, 1.0F, alpha);
+  if (kd && map.empty()) material->base_color.head<3>() = *kd;
+  if (!map.empty()) {
+    // Relative to the library's folder, as the reference to the library is to the OBJ's.
+    const std::string reference =
+        (std::filesystem::path(std::string(mtllib)).parent_path() / std::string(map))
+            .lexically_normal()
+            .generic_string();
+    Result<Image> image = resolve_image(resolve, reference, library_name, notes);
+    if (!image) return std::move(image).error();
+    material->base_color_image = std::move(image).value();
+  }
+  return material;
+}
+
 } // namespace
 
-Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
+Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes, const Resolver& resolve) {
   Result<Survey> survey = Validator(bytes, source).run();
   if (!survey) return std::move(survey).error();
   if (survey->counts[Vertex] == 0)
@@ -439,7 +600,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   for (const std::uint8_t corners : survey->face_sizes)
     triangles += corners - 2U;
   mesh.triangles.reserve(triangles);
-  const Corner* c = survey->corners.data();
+  const Corner* c = survey->corners.data(); // NOLINT(misc-const-correctness): walked again below
   for (const std::uint8_t corners : survey->face_sizes) {
     for (std::size_t k = 0; k < corners; ++k) {
       if (with_normals) normals.add(c[k].v, c[k].vn);
@@ -465,9 +626,25 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   if (keep(normals, Normal, "normals"))
     for (std::size_t i = 0; i < vertices; ++i)
       mesh.normals.emplace_back(normals.at(i, 0), normals.at(i, 1), normals.at(i, 2));
-  if (keep(texcoords, Texcoord, "texture coordinates"))
+  if (const auto in_file = static_cast<std::size_t>(survey->counts[Texcoord]);
+      texcoords.seams() && !mesh.triangles.empty()) {
+    // Seams: the texture coordinates stay per corner, the vertices whole.
+    mesh.texcoords.resize(in_file);
+    for (std::size_t i = 0; i < in_file; ++i)
+      mesh.texcoords[i] = Vec2f(survey->texcoords[2 * i], survey->texcoords[2 * i + 1]);
+    mesh.texcoord_triangles.reserve(mesh.triangles.size());
+    c = survey->corners.data();
+    for (const std::uint8_t corners : survey->face_sizes) {
+      for (std::size_t k = 1; k + 1 < corners; ++k)
+        mesh.texcoord_triangles.push_back({static_cast<std::uint32_t>(c[0].vt),
+                                           static_cast<std::uint32_t>(c[k].vt),
+                                           static_cast<std::uint32_t>(c[k + 1].vt)});
+      c += corners;
+    }
+  } else if (keep(texcoords, Texcoord, "texture coordinates")) {
     for (std::size_t i = 0; i < vertices; ++i)
       mesh.texcoords.emplace_back(texcoords.at(i, 0), texcoords.at(i, 1));
+  }
   if (survey->colored == vertices) {
     for (std::size_t i = 0; i < vertices; ++i)
       mesh.colors.emplace_back(survey->colors[3 * i], survey->colors[3 * i + 1], survey->colors[3 * i + 2],
@@ -482,6 +659,15 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
         "statements not read: {}{}", excerpt_list(survey->ignored),
         survey->more_ignored == 0 ? "" : fmt::format(" and {} more statements", survey->more_ignored)));
   if (Result<void> valid = validate(mesh, source); !valid) return std::move(valid).error();
+  if (!survey->mtllib.empty()) {
+    if (survey->materials.size() > 1 || survey->more_materials != 0)
+      note(fmt::format("materials after the first ({}) not used: a mesh holds one",
+                       excerpt_list(std::span(survey->materials).subspan(1))));
+    Result<std::optional<Material>> material = read_material(
+        resolve, survey->mtllib, survey->materials.empty() ? "" : survey->materials.front(), source, notes);
+    if (!material) return std::move(material).error();
+    mesh.material = std::move(material).value();
+  }
   return mesh;
 }
 

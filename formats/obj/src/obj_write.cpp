@@ -5,7 +5,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <iterator>
+#include <stdexcept>
 
 namespace pdeface::obj {
 namespace {
@@ -31,26 +33,35 @@ private:
   int precision_;
 };
 
-// "f a b c", "f a/a ...", "f a//a ..." or "f a/a/a ...": one index for every attribute, since our
-// attributes are per vertex.
+// "f a b c", "f a/a ...", "f a//a ..." or "f a/b/a ...": the vertex's index for every per-vertex
+// attribute, the corner's own for per-corner texture coordinates.
 void write_faces(fmt::memory_buffer& out, const Mesh& mesh) {
   auto index = [&out](std::uint32_t v) { fmt::format_to(std::back_inserter(out), "{}", v + 1); };
-  for (const Triangle& t : mesh.triangles) {
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
     out.push_back('f');
-    for (std::uint32_t v : t) {
+    for (std::size_t k = 0; k < 3; ++k) {
       out.push_back(' ');
-      index(v);
+      index(t[k]);
       if (mesh.has_texcoords()) {
         out.push_back('/');
-        index(v);
+        index(mesh.has_corner_texcoords() ? mesh.texcoord_triangles[f][k] : t[k]);
       }
       if (mesh.has_normals()) {
         out.append(std::string_view(mesh.has_texcoords() ? "/" : "//"));
-        index(v);
+        index(t[k]);
       }
     }
     out.push_back('\n');
   }
+}
+
+// A name as one token of a line: blanks and '#' (a comment) become '_'.
+std::string token(std::string_view name) {
+  std::string out = clean_name(name);
+  std::ranges::replace_if(
+      out, [](char c) { return c == '#' || std::isspace(static_cast<unsigned char>(c)) != 0; }, '_');
+  return out;
 }
 
 } // namespace
@@ -72,6 +83,10 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
   std::string name = clean_name(mesh.name);
   std::ranges::replace(name, '#', ' ');
   if (!name.empty()) fmt::format_to(std::back_inserter(out), "o {}\n", name);
+  const bool material = mesh.material && !options.material_library.empty();
+  if (mesh.material && !material && notes)
+    notes->push_back("material dropped: no material library to write it in (written by file only)");
+  if (material) fmt::format_to(std::back_inserter(out), "mtllib {}\n", clean_name(options.material_library));
   for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
     out.push_back('v');
     for (double c : mesh.positions[i])
@@ -93,8 +108,24 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
       number(c);
     out.push_back('\n');
   }
+  if (material) fmt::format_to(std::back_inserter(out), "usemtl {}\n", material_name(*mesh.material));
   write_faces(out, mesh);
   return fmt::to_string(out);
+}
+
+std::string material_name(const Material& material) {
+  std::string name = token(material.name);
+  return name.empty() ? "material_0" : name;
+}
+
+std::string write_material_library(const Mesh& mesh, std::string_view image) {
+  if (!mesh.material) throw std::invalid_argument("obj::write_material_library: the mesh has no material");
+  const Material& m = *mesh.material;
+  std::string out = "# written by pdeface\n";
+  fmt::format_to(std::back_inserter(out), "newmtl {}\nKd {} {} {}\nd {}\nillum 1\n", material_name(m),
+                 m.base_color[0], m.base_color[1], m.base_color[2], m.base_color[3]);
+  if (!image.empty()) fmt::format_to(std::back_inserter(out), "map_Kd {}\n", clean_name(image));
+  return out;
 }
 
 } // namespace pdeface::obj

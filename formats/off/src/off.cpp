@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <limits>
@@ -100,7 +101,8 @@ private:
                   next.text == "BINARY" ? std::string("binary OFF is not supported")
                                         : fmt::format("'{}' after {}: the counts must be on the next line",
                                                       excerpt(next.text), excerpt(word.text)));
-    if (colors) note("COFF vertex colours dropped (OpenMesh reads OFF streams as plain OFF)");
+    colors_ = colors; // read here: OpenMesh reads the stream as plain OFF
+    normals_ = normals;
     if (normals) note("NOFF normals dropped (OpenMesh reads OFF streams as plain OFF)");
     return {};
   }
@@ -158,13 +160,48 @@ private:
                     fmt::format("{} of vertex {} is {}, not a finite float", axis, index, excerpt(t->text)));
     }
     const std::uint64_t line = scan_.here().line;
-    if (blank_rest_of_line() && !noted_vertex_extras_) {
+    if (colors_)
+      if (Result<void> ok = color(index); !ok) return ok;
+    if (blank_rest_of_line() && !noted_vertex_extras_ && !colors_) {
       note(fmt::format("values after the vertex coordinates ignored (line {} and later)", line));
       noted_vertex_extras_ = true;
     }
     return {};
   }
 
+  // COFF: r g b [a] after the coordinates, integers 0..255 or reals 0..1 (Geomview's rule: a value with a
+  // '.' or an exponent is real). The scanner stays before them: they are blanked with the rest of the line.
+  Result<void> color(std::int64_t index) {
+    Scanner look = scan_;
+    if (normals_) // NOFF: nx ny nz come first
+      for (int k = 0; k < 3; ++k)
+        if (look.next_on_line().empty())
+          return fail(ErrorCode::Malformed, look.here(),
+                      fmt::format("CNOFF vertex {}: expected nx ny nz r g b [a] after x y z", index));
+    std::array<float, 4> c{0, 0, 0, 1};
+    std::size_t count = 0;
+    Location where = look.here();
+    for (Token t = look.next_on_line(); !t.empty(); t = look.next_on_line(), ++count) {
+      if (count == 0) where = t.location();
+      const std::optional<double> v = text::parse_double(t.text);
+      if (!v || !std::isfinite(*v) || count == 4)
+        return fail(ErrorCode::Malformed, t.location(),
+                    fmt::format("COFF vertex {}: expected r g b [a] after x y z, found '{}'", index,
+                                excerpt(t.text)));
+      const bool real = t.text.find_first_of(".eE") != std::string_view::npos;
+      c[count] = static_cast<float>(std::clamp(real ? *v : *v / 255.0, 0.0, 1.0));
+    }
+    if (count != 3 && count != 4)
+      return fail(ErrorCode::Malformed, where,
+                  fmt::format("COFF vertex {} has {} colour values: expected r g b [a]", index, count));
+    colors_read.emplace_back(c[0], c[1], c[2], c[3]);
+    return {};
+  }
+
+public:
+  std::vector<Vec4f> colors_read; // COFF: one per vertex
+
+private:
   Result<void> face(std::int64_t index, std::int64_t total, std::int64_t vertices) {
     Result<Token> size = token("face", index, total, "number of corners");
     if (!size) return std::move(size).error();
@@ -201,6 +238,8 @@ private:
   Notes* notes_;
   bool noted_vertex_extras_ = false;
   bool noted_face_extras_ = false;
+  bool colors_ = false;
+  bool normals_ = false;
 };
 
 } // namespace
@@ -208,16 +247,37 @@ private:
 Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
   std::string text(bytes);
   const Units units = blank_comments(text);
-  if (Result<void> ok = Validator(text, source, notes).run(); !ok) return std::move(ok).error();
+  Validator validator(text, source, notes);
+  if (Result<void> ok = validator.run(); !ok) return std::move(ok).error();
   Result<Mesh> mesh = openmesh_io::read_openmesh(std::move(text), {.extension = "off"}, source, notes);
   if (mesh) mesh->units = units;
+  if (mesh && !validator.colors_read.empty() && validator.colors_read.size() == mesh->vertex_count())
+    mesh->colors = std::move(validator.colors_read);
   return mesh;
 }
 
 Result<std::string> write(const Mesh& mesh, Notes* notes) {
   if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
+  Mesh plain = mesh; // colours are ours to write (COFF), the rest OpenMesh's
+  plain.colors.clear();
   Result<std::string> bytes =
-      openmesh_io::write_openmesh(mesh, {.extension = "off", .binary = false}, "OFF", notes);
+      openmesh_io::write_openmesh(plain, {.extension = "off", .binary = false}, "OFF", notes);
+  if (bytes && mesh.has_colors()) {
+    // "COFF", the counts, then each vertex line with r g b a as integers 0..255.
+    std::string out = "C";
+    std::size_t at = bytes->find('\n');
+    at = bytes->find('\n', at + 1);
+    out.append(*bytes, 0, at + 1);
+    for (const Vec4f& c : mesh.colors) {
+      const std::size_t end = bytes->find('\n', at + 1);
+      out.append(*bytes, at + 1, end - at - 1);
+      const auto byte = [](float x) { return std::lround(std::clamp(x, 0.0F, 1.0F) * 255.0F); };
+      out += fmt::format(" {} {} {} {}\n", byte(c[0]), byte(c[1]), byte(c[2]), byte(c[3]));
+      at = end;
+    }
+    out.append(*bytes, at + 1);
+    *bytes = std::move(out);
+  }
   if (!bytes || mesh.units == Units::Unknown) return bytes;
   // A comment after the OFF line states the units; our reader finds it, other readers skip it.
   bytes->insert(bytes->find('\n') + 1, fmt::format("# units {}\n", to_string(mesh.units)));

@@ -5,11 +5,34 @@
 
 #include <fmt/format.h>
 
+#include "pdeface/core/text.hpp"
+
 #include <algorithm>
 
 namespace pdeface::ply {
 
-Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
+namespace {
+
+// The image a `comment TextureFile` names, as the material of a mesh with texture coordinates.
+Result<Mesh> with_texture(Result<Mesh> mesh, const detail::Header& header, std::string_view source,
+                          Notes* notes, const Resolver& resolve) {
+  if (!mesh || header.texture_file.empty()) return mesh;
+  if (!mesh->has_texcoords()) {
+    if (notes)
+      notes->push_back(fmt::format("{}: TextureFile '{}' ignored: the vertices have no texture coordinates",
+                                   source, excerpt(header.texture_file)));
+    return mesh;
+  }
+  Result<Image> image = resolve_image(resolve, header.texture_file, source, notes);
+  if (!image) return std::move(image).error();
+  mesh->material =
+      Material{.name = {}, .base_color = Vec4f::Ones(), .base_color_image = std::move(image).value()};
+  return mesh;
+}
+
+} // namespace
+
+Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes, const Resolver& resolve) {
   Result<detail::Header> header = detail::parse_header(bytes, source, notes);
   if (!header) return std::move(header).error();
   if (std::optional<detail::DirectRead> direct = detail::read_direct(*header, bytes)) {
@@ -25,18 +48,26 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
     if (direct->mesh.positions.empty())
       return make_error(ErrorCode::Empty, "no vertices in the file", std::string(source));
     direct->mesh.units = header->units;
-    return std::move(direct->mesh);
+    return with_texture(std::move(direct->mesh), *header, source, notes, resolve);
   }
   Result<detail::DataRanges> data = detail::check_data(*header, bytes, source, notes);
   if (!data) return std::move(data).error();
   Result<Mesh> mesh =
       openmesh_io::read_openmesh(detail::openmesh_input(*header, *data), {.extension = "ply"}, source, notes);
   if (mesh) mesh->units = header->units;
-  return mesh;
+  return with_texture(std::move(mesh), *header, source, notes, resolve);
 }
 
-Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* notes) {
-  if (Result<void> valid = check_writable(mesh); !valid) return std::move(valid).error();
+Result<std::string> write(const Mesh& input, const WriteOptions& options, Notes* notes) {
+  if (Result<void> valid = check_writable(input); !valid) return std::move(valid).error();
+  // One texture coordinate per vertex (s t): seam vertices written once per coordinate.
+  std::size_t split = 0;
+  const Mesh mesh = with_vertex_texcoords(input, &split);
+  if (split > 0 && notes)
+    notes->push_back(
+        fmt::format("{} vertices on texture seams written once per texture coordinate: PLY's s t "
+                    "are per vertex",
+                    split));
   const bool alpha = std::ranges::any_of(mesh.colors, [](const Vec4f& c) { return c[3] < 1.0f; });
   Result<std::string> bytes = openmesh_io::write_openmesh(mesh,
                                                           {.extension = "ply",
@@ -46,10 +77,17 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
                                                            .alpha = alpha,
                                                            .texcoords = mesh.has_texcoords()},
                                                           "PLY", notes);
-  if (!bytes || mesh.units == Units::Unknown) return bytes;
-  // OpenMesh writes no comments: state the units after the format line, where our reader looks for them.
+  if (!bytes) return bytes;
+  // OpenMesh writes no comments: state the units and the texture after the format line, where our reader
+  // looks for them.
+  std::string comments;
+  if (mesh.units != Units::Unknown) comments += fmt::format("comment units {}\n", to_string(mesh.units));
+  if (!options.texture_file.empty() && mesh.has_texcoords())
+    comments += fmt::format("comment TextureFile {}\n", clean_name(options.texture_file));
+  else if (mesh.material && mesh.material->base_color_image && notes)
+    notes->push_back("texture image dropped: PLY names one only beside texture coordinates, written by file");
   const std::size_t format_end = bytes->find('\n', bytes->find("\nformat ") + 1);
-  bytes->insert(format_end + 1, fmt::format("comment units {}\n", to_string(mesh.units)));
+  bytes->insert(format_end + 1, comments);
   return bytes;
 }
 

@@ -206,6 +206,15 @@ private:
     if (keyword.text == "comment") {
       if (auto units = text::units_from_comment(line_text.substr(keyword.offset + keyword.text.size())))
         header_.units = *units;
+      if (const Token word = scan.next_on_line();
+          word.text == "TextureFile" && header_.texture_file.empty()) {
+        std::string_view name = line_text.substr(std::min(line_text.size(), word.offset + word.text.size()));
+        while (!name.empty() && std::isspace(static_cast<unsigned char>(name.front())))
+          name.remove_prefix(1);
+        while (!name.empty() && std::isspace(static_cast<unsigned char>(name.back())))
+          name.remove_suffix(1);
+        header_.texture_file = name;
+      }
       return {};
     }
     if (keyword.text == "format") return format(scan);

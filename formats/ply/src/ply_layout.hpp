@@ -53,6 +53,7 @@ struct Header {
   Encoding encoding = Encoding::Ascii;
   std::vector<Element> elements;
   Units units = Units::Unknown; //!< from a "comment units mm" line
+  std::string texture_file;     //!< from a "comment TextureFile name.jpg" line (MeshLab's)
   std::size_t data_offset = 0;  //!< first byte after the end_header line
   std::uint64_t data_line = 0;  //!< line on which the data starts (ASCII)
 };

@@ -125,6 +125,8 @@ public:
   }
 
   void face_set(const FaceSetView& f, const Eigen::Affine3d& matrix);
+  //! VRML 2.0: the Appearance of a Shape drawn; the first one's material is the mesh's.
+  void appearance(const Node& node);
   void point_set(const PointSetView& p, const Eigen::Affine3d& matrix);
 
   //! After the counting pass: reserves the output.
@@ -145,11 +147,43 @@ private:
   bool counting_;
   std::size_t visits_ = 0, vertices_ = 0, corners_ = 0;
   std::size_t face_sets_ = 0, point_sets_ = 0, point_set_points_ = 0, short_polygons_ = 0;
+  //! Each corner's index into its face set's texture coordinates (per coordIndex entry; -1 ends a
+  //! polygon), or nullopt when the face set has none we can read.
+  std::optional<std::vector<std::int32_t>> corner_texcoords(const FaceSetView& f);
+
   Mesh mesh_;
   MergedAttribute<Vec3f> normals_;
   MergedAttribute<Vec4f> colors_;
-  MergedAttribute<Vec2f> texcoords_;
+  // Texture coordinates per corner, whatever the file's form: the face sets' values one after another, and
+  // one index triangle per triangle; made per vertex in `finish` when no vertex has two.
+  std::vector<Vec2f> uv_table_;
+  std::vector<Triangle> uv_triangles_;
+  std::size_t uv_sets_ = 0, no_uv_sets_ = 0;
+  std::size_t appearances_ = 0;
 };
+
+void Builder::appearance(const Node& node) {
+  const auto* a = std::get_if<Appearance>(&node.data);
+  if (counting_ || !a || ++appearances_ > 1) {
+    if (!counting_ && appearances_ == 2)
+      note(node.at, "Appearances after the first dropped: a mesh holds one material");
+    return;
+  }
+  pdeface::Material m;
+  const auto* image = a->texture ? std::get_if<ImageTexture>(&a->texture->data) : nullptr;
+  if (a->texture && !image)
+    note(a->texture->at,
+         fmt::format("texture {} dropped: only ImageTexture is read", excerpt(a->texture->type)));
+  if (const auto* material = a->material ? std::get_if<Material>(&a->material->data) : nullptr) {
+    // An RGB texture replaces the diffuse colour (VRML97 4.14): the colour only without an image.
+    if (!material->diffuse.empty() && (!image || image->url.empty()))
+      m.base_color.head<3>() = material->diffuse.front();
+    m.base_color[3] = std::clamp(1.0F - material->transparency, 0.0F, 1.0F);
+  }
+  if (image && !image->url.empty())
+    m.base_color_image = pdeface::Image{.bytes = {}, .mime_type = {}, .uri = image->url};
+  mesh_.material = std::move(m);
+}
 
 void Builder::count(const Node& node, std::size_t vertices, std::size_t corners) {
   vertices_ += vertices;
@@ -183,6 +217,14 @@ void Builder::face_set(const FaceSetView& f, const Eigen::Affine3d& matrix) {
   // winding over, so it flips the order back, like ccw FALSE does.
   const bool flip = f.clockwise != (matrix.linear().determinant() < 0.0);
   const auto offset = static_cast<std::uint32_t>(mesh_.positions.size());
+  const std::optional<std::vector<std::int32_t>> uv = corner_texcoords(f);
+  const auto uv_offset = static_cast<std::uint32_t>(uv_table_.size());
+  if (uv) {
+    ++uv_sets_;
+    uv_table_.insert(uv_table_.end(), f.texcoords.values->begin(), f.texcoords.values->end());
+  } else {
+    ++no_uv_sets_;
+  }
   std::size_t start = 0;
   for (std::size_t k = 0; k <= index.size(); ++k) {
     if (k < index.size() && index[k] != -1) {
@@ -201,6 +243,14 @@ void Builder::face_set(const FaceSetView& f, const Eigen::Affine3d& matrix) {
                  c = static_cast<std::uint32_t>(index[i + 1]);
       mesh_.triangles.push_back(flip ? Triangle{offset + a, offset + c, offset + b}
                                      : Triangle{offset + a, offset + b, offset + c});
+      Triangle t{0, 0, 0};
+      if (uv) {
+        const auto at = [&](std::size_t corner) {
+          return uv_offset + static_cast<std::uint32_t>((*uv)[corner]);
+        };
+        t = flip ? Triangle{at(start), at(i + 1), at(i)} : Triangle{at(start), at(i), at(i + 1)};
+      }
+      uv_triangles_.push_back(t);
     }
     start = k + 1;
   }
@@ -224,7 +274,46 @@ void Builder::face_set(const FaceSetView& f, const Eigen::Affine3d& matrix) {
       rgba->emplace_back(c.x(), c.y(), c.z(), 1.0F);
   }
   colors_.append(std::move(rgba), offset, n);
-  texcoords_.append(per_vertex(f.texcoords, f, "texture coordinates", "texCoordIndex"), offset, n);
+}
+
+// Texture coordinates follow coordIndex without a texCoordIndex, else texCoordIndex: per corner, so a
+// seam (a vertex given two) is kept.
+std::optional<std::vector<std::int32_t>> Builder::corner_texcoords(const FaceSetView& f) {
+  const Attribute<Vec2f>& a = f.texcoords;
+  if (!a.values) return std::nullopt;
+  const Position& at = f.node->at;
+  const std::vector<Vec2f>& values = *a.values;
+  const std::vector<std::int32_t>& corners = f.coord_index->values;
+  const std::size_t n = f.points->size();
+  if (!a.index || a.index->values.empty()) {
+    if (values.size() < n) {
+      note(at, fmt::format("texture coordinates dropped: {} of them for {} points", values.size(), n));
+      return std::nullopt;
+    }
+    return corners;
+  }
+  const std::vector<std::int32_t>& index = a.index->values;
+  const std::size_t length = used_length(corners);
+  if (used_length(index) != length) {
+    note(at, fmt::format("texture coordinates dropped: texCoordIndex has {} entries where coordIndex has {}",
+                         index.size(), corners.size()));
+    return std::nullopt;
+  }
+  std::vector<std::int32_t> out(corners.size(), -1);
+  for (std::size_t k = 0; k < length; ++k) {
+    const std::int32_t i = index[k];
+    if (i < -1 || (i >= 0 && static_cast<std::size_t>(i) >= values.size()))
+      context_.fail(ErrorCode::IndexOutOfRange, context_.locate(*a.index, k),
+                    fmt::format("texCoordIndex {} is out of range: there are {} texture coordinates", i,
+                                values.size()));
+    if ((corners[k] == -1) != (i == -1)) {
+      note(at, "texture coordinates dropped: texCoordIndex and coordIndex do not end polygons at the same "
+               "places");
+      return std::nullopt;
+    }
+    out[k] = i;
+  }
+  return out;
 }
 
 void Builder::point_set(const PointSetView& p, const Eigen::Affine3d& matrix) {
@@ -245,7 +334,6 @@ void Builder::point_set(const PointSetView& p, const Eigen::Affine3d& matrix) {
   }
   colors_.append(std::move(colors), offset, n);
   normals_.append(std::nullopt, offset, n);
-  texcoords_.append(std::nullopt, offset, n);
 }
 
 // The rule for every attribute: keep it when each vertex gets exactly one value. With no index list
@@ -316,7 +404,16 @@ Mesh Builder::finish(const Scene& scene) {
                               point_set_points_));
   mesh_.normals = normals_.take(context_, "normals");
   mesh_.colors = colors_.take(context_, "colours");
-  mesh_.texcoords = texcoords_.take(context_, "texture coordinates");
+  if (uv_sets_ > 0 && no_uv_sets_ > 0) {
+    context_.note(fmt::format("texture coordinates dropped: only {} of the {} face sets have them", uv_sets_,
+                              uv_sets_ + no_uv_sets_));
+  } else if (uv_sets_ > 0 && !mesh_.triangles.empty()) {
+    mesh_.texcoords = std::move(uv_table_);
+    mesh_.texcoord_triangles = std::move(uv_triangles_);
+    // Per vertex when no vertex has two (the vertices stay as they are).
+    std::size_t split = 0;
+    if (Mesh per_vertex = with_vertex_texcoords(mesh_, &split); split == 0) mesh_ = std::move(per_vertex);
+  }
   mesh_.units = scene.units;
   mesh_.name = scene.title;
   return std::move(mesh_);
@@ -341,6 +438,7 @@ void visit_v2(Builder& b, const Node& node, const Eigen::Affine3d& matrix, std::
   }
   const auto* shape = std::get_if<Shape>(&node.data);
   if (!shape || !shape->geometry) return;
+  if (shape->appearance) b.appearance(*shape->appearance);
   const Node& geometry = *shape->geometry;
   b.enter(geometry, depth + 1);
   if (const auto* f = std::get_if<FaceSet>(&geometry.data)) {

@@ -3,6 +3,8 @@
 #include "parse_v2.hpp"
 #include "pdeface/core/text.hpp"
 
+#include <algorithm>
+
 namespace pdeface::vrml::detail {
 
 NodeData ParserV2::parse_body(const Token& type) {
@@ -12,6 +14,9 @@ NodeData ParserV2::parse_body(const Token& type) {
   if (t == "Switch") return switch_node();
   if (t == "LOD") return lod(type);
   if (t == "Shape") return shape();
+  if (t == "Appearance") return appearance();
+  if (t == "Material") return material();
+  if (t == "ImageTexture") return image_texture();
   if (t == "IndexedFaceSet") return face_set();
   if (t == "PointSet") return point_set();
   if (t == "Coordinate") return list_node<Coordinates>("point", &Coordinates::points);
@@ -104,8 +109,57 @@ NodeData ParserV2::lod(const Token& type) {
 
 NodeData ParserV2::shape() {
   Shape s;
-  only_field("geometry", [&] { s.geometry = read_sfnode(); });
+  fields([&](const Token& name) {
+    if (name.text == "geometry")
+      s.geometry = read_sfnode();
+    else if (name.text == "appearance")
+      s.appearance = read_node_of<Appearance>(name.text, "Appearance");
+    else
+      return false;
+    return true;
+  });
   return s;
+}
+
+NodeData ParserV2::appearance() {
+  Appearance a;
+  fields([&](const Token& name) {
+    if (name.text == "material")
+      a.material = read_node_of<Material>(name.text, "Material");
+    else if (name.text == "texture")
+      a.texture = read_sfnode(); // an ImageTexture, or a PixelTexture or MovieTexture (skipped)
+    else
+      return false;
+    return true;
+  });
+  return a;
+}
+
+NodeData ParserV2::material() {
+  Material m;
+  fields([&](const Token& name) {
+    if (name.text == "diffuseColor") {
+      const std::vector<Vec3f> colour = read_vectors<Vec3f>(name.text);
+      m.diffuse.assign(colour.begin(), colour.begin() + std::min<std::ptrdiff_t>(1, std::ssize(colour)));
+    } else if (name.text == "transparency") {
+      m.transparency = number<float>(next_required("a number"), name.text);
+    } else {
+      return false;
+    }
+    return true;
+  });
+  return m;
+}
+
+NodeData ParserV2::image_texture() {
+  ImageTexture t;
+  fields([&](const Token& name) {
+    if (name.text != "url") return false;
+    const std::vector<std::string_view> urls = read_strings(name.text);
+    if (!urls.empty()) t.url = unescape(urls.front());
+    return true;
+  });
+  return t;
 }
 
 NodeData ParserV2::face_set() {

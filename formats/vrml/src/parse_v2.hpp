@@ -20,6 +20,9 @@ private:
   NodeData switch_node();
   NodeData lod(const Token& type);
   NodeData shape();
+  NodeData appearance();
+  NodeData material();
+  NodeData image_texture();
   NodeData face_set();
   NodeData point_set();
   NodeData world_info();

@@ -57,6 +57,15 @@ struct Group {
 
 struct Shape {
   NodePtr geometry;
+  NodePtr appearance; // VRML 2.0: an Appearance, or none
+};
+
+//! VRML 2.0: a Shape's `Appearance`: its `Material` and `ImageTexture` (or none).
+struct Appearance {
+  NodePtr material, texture;
+};
+struct ImageTexture {
+  std::string url; // the first of its urls, unescaped
 };
 
 struct FaceSet {
@@ -95,7 +104,8 @@ struct MaterialBinding {
   Binding value = Binding::Default;
 };
 struct Material {
-  std::vector<Vec3f> diffuse;
+  std::vector<Vec3f> diffuse; // VRML 2.0: one colour
+  float transparency = 0.0F;  // VRML 2.0
 };
 struct ShapeHints {
   bool clockwise = false; // vertexOrdering CLOCKWISE
@@ -120,8 +130,9 @@ struct TransformFields {
 //! A node parsed past: only its type name is known.
 struct Skipped {};
 
-using NodeData = std::variant<Skipped, Group, Shape, FaceSet, PointSet, Coordinates, Colors, Normals,
-                              TexCoords, MatrixNode, NormalBinding, MaterialBinding, Material, ShapeHints>;
+using NodeData =
+    std::variant<Skipped, Group, Shape, FaceSet, PointSet, Coordinates, Colors, Normals, TexCoords,
+                 MatrixNode, NormalBinding, MaterialBinding, Material, ShapeHints, Appearance, ImageTexture>;
 
 struct Node {
   std::string_view type; // as written in the file

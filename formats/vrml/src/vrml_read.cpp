@@ -61,7 +61,7 @@ Header read_header(std::string_view bytes, const Context& context) {
 
 } // namespace
 
-Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes) {
+Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes, const Resolver& resolve) {
   Context context(bytes, source);
   try {
     const Header header = read_header(bytes, context);
@@ -70,6 +70,11 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
     Mesh mesh = detail::build_mesh(scene, header.version, context);
     if (Result<void> valid = validate(mesh, source); !valid) return std::move(valid).error();
     context.flush_notes(notes);
+    if (mesh.material && mesh.material->base_color_image) {
+      Result<Image> image = resolve_image(resolve, mesh.material->base_color_image->uri, source, notes);
+      if (!image) return std::move(image).error();
+      mesh.material->base_color_image = std::move(image).value();
+    }
     return mesh;
   } catch (const detail::Failure& failure) {
     return failure.error;

@@ -91,11 +91,29 @@ void write_world_info(Text& out, const Mesh& mesh) {
   out << "}\n";
 }
 
-void write_triangles(Text& out, const std::vector<Triangle>& triangles) {
-  out << "    coordIndex [\n";
+void write_triangles(Text& out, std::string_view field, const std::vector<Triangle>& triangles) {
+  out.format("    {} [\n", field);
   for (const Triangle& t : triangles)
     out.line("      ", t.data(), 3, 0, " -1,\n");
   out << "    ]\n";
+}
+
+// The material as an Appearance: its colour (VRML's diffuseColor, which an RGB texture replaces) and its
+// image by name (`texture_url`, a file written beside).
+void write_appearance(Text& out, const Mesh& mesh, const WriteOptions& options, Notes* notes) {
+  if (!mesh.material) return;
+  const Material& m = *mesh.material;
+  out << "  appearance Appearance {\n    material Material {\n";
+  out.line("      diffuseColor ", m.base_color.data(), 3, kFloatDigits, "\n");
+  if (m.base_color[3] < 1.0F) out.format("      transparency {}\n", 1.0F - m.base_color[3]);
+  out << "    }\n";
+  if (!options.texture_url.empty() && mesh.has_texcoords())
+    out.format("    texture ImageTexture {{ url {} }}\n", quoted(clean_name(options.texture_url)));
+  else if (m.base_color_image && notes)
+    notes->push_back(options.texture_url.empty()
+                         ? "texture image dropped: no file to write it in (written by file only)"
+                         : "texture image dropped: the mesh has no texture coordinates");
+  out << "  }\n";
 }
 
 void note(Notes* notes, std::string text) {
@@ -122,7 +140,9 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
            26 * mesh.triangles.size());
   out << "#VRML V2.0 utf8\n# written by pdeface\n";
   write_world_info(out, mesh);
-  out.format("Shape {{\n  geometry {} {{\n", points ? "PointSet" : "IndexedFaceSet");
+  out << "Shape {\n";
+  write_appearance(out, mesh, options, notes);
+  out.format("  geometry {} {{\n", points ? "PointSet" : "IndexedFaceSet");
   if (!points) out << "    solid FALSE\n";
   write_node(out, "coord", "Coordinate", "point", mesh.positions, 3, options.precision);
 
@@ -140,7 +160,8 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
     note(notes, "texture coordinates dropped: a VRML PointSet cannot hold them");
   else if (mesh.has_texcoords())
     write_node(out, "texCoord", "TextureCoordinate", "point", mesh.texcoords, 2, digits);
-  if (!points) write_triangles(out, mesh.triangles);
+  if (!points) write_triangles(out, "coordIndex", mesh.triangles);
+  if (!points && mesh.has_corner_texcoords()) write_triangles(out, "texCoordIndex", mesh.texcoord_triangles);
   out << "  }\n}\n";
   return out.take();
 }

@@ -4,6 +4,9 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
+#include <type_traits>
+#include <unordered_map>
 
 namespace pdeface {
 
@@ -90,9 +93,20 @@ Result<void> validate(const Mesh& mesh, std::string_view source) {
     return fail(ErrorCode::Malformed, fmt::format("{} normals for {} vertices", mesh.normals.size(), n));
   if (!check_size(mesh.colors.size()))
     return fail(ErrorCode::Malformed, fmt::format("{} colours for {} vertices", mesh.colors.size(), n));
-  if (!check_size(mesh.texcoords.size()))
+  if (mesh.has_corner_texcoords()) {
+    if (mesh.texcoord_triangles.size() != mesh.triangles.size())
+      return fail(ErrorCode::Malformed, fmt::format("{} texture coordinate triangles for {} triangles",
+                                                    mesh.texcoord_triangles.size(), mesh.triangles.size()));
+    const std::size_t table = mesh.texcoords.size();
+    for (std::size_t f = 0; f < mesh.texcoord_triangles.size(); ++f)
+      for (std::uint32_t t : mesh.texcoord_triangles[f])
+        if (t >= table)
+          return fail(ErrorCode::IndexOutOfRange,
+                      fmt::format("triangle {} refers to texture coordinate {} of {}", f, t, table));
+  } else if (!check_size(mesh.texcoords.size())) {
     return fail(ErrorCode::Malformed,
                 fmt::format("{} texture coordinates for {} vertices", mesh.texcoords.size(), n));
+  }
   for (std::size_t i = 0; i < n; ++i)
     if (!mesh.positions[i].allFinite())
       return fail(ErrorCode::NonFinite, fmt::format("vertex {} has a non-finite coordinate", i));
@@ -109,6 +123,113 @@ Result<void> check_writable(const Mesh& mesh) {
   if (mesh.positions.empty())
     return make_error(ErrorCode::Empty, "nothing to write: the mesh has no vertices", mesh.name);
   return {};
+}
+
+std::vector<Vec2f> corner_texcoords(const Mesh& mesh) {
+  std::vector<Vec2f> out;
+  if (!mesh.has_texcoords()) return out;
+  out.reserve(3 * mesh.triangles.size());
+  const std::vector<Triangle>& index = mesh.has_corner_texcoords() ? mesh.texcoord_triangles : mesh.triangles;
+  for (const Triangle& t : index)
+    for (std::uint32_t i : t)
+      out.push_back(mesh.texcoords[i]);
+  return out;
+}
+
+namespace {
+
+// The bytes of `value` appended to `key`: the maps below compare values bit for bit.
+template <class T>
+requires std::is_arithmetic_v<T>
+void append_bits(std::string& key, T value) {
+  const auto old = key.size();
+  key.resize(old + sizeof(T));
+  std::memcpy(key.data() + old, &value, sizeof(T));
+}
+template <class Derived> void append_bits(std::string& key, const Eigen::MatrixBase<Derived>& value) {
+  for (Eigen::Index i = 0; i < value.size(); ++i)
+    append_bits(key, value(i));
+}
+
+} // namespace
+
+Mesh with_vertex_texcoords(const Mesh& mesh, std::size_t* split) {
+  if (split) *split = 0;
+  if (!mesh.has_corner_texcoords()) return mesh;
+  Mesh out = mesh;
+  out.texcoord_triangles.clear();
+  const std::size_t n = mesh.positions.size();
+  std::vector<bool> seen(n, false);
+  std::vector<Vec2f> uv(n, Vec2f::Zero());
+  // (vertex, coordinate's bits) → the vertex's copy with that coordinate.
+  std::unordered_map<std::string, std::uint32_t> copies;
+  std::string key;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      std::uint32_t& v = out.triangles[f][k];
+      const Vec2f& t = mesh.texcoords[mesh.texcoord_triangles[f][k]];
+      if (!seen[v]) {
+        seen[v] = true;
+        uv[v] = t;
+        continue;
+      }
+      if (uv[v] == t) continue;
+      key.clear();
+      append_bits(key, v);
+      append_bits(key, t);
+      const auto [it, added] = copies.try_emplace(key, static_cast<std::uint32_t>(out.positions.size()));
+      if (added) {
+        out.positions.push_back(mesh.positions[v]);
+        if (mesh.has_normals()) out.normals.push_back(mesh.normals[v]);
+        if (mesh.has_colors()) out.colors.push_back(mesh.colors[v]);
+        uv.push_back(t);
+      }
+      v = it->second;
+    }
+  }
+  out.texcoords = std::move(uv);
+  if (split) *split = out.positions.size() - n;
+  return out;
+}
+
+Mesh weld_texcoord_seams(const Mesh& mesh, std::size_t* merged) {
+  if (merged) *merged = 0;
+  if (!mesh.has_texcoords() || mesh.has_corner_texcoords() || mesh.is_point_cloud()) return mesh;
+  const std::size_t n = mesh.positions.size();
+  std::unordered_map<std::string, std::uint32_t> first;
+  first.reserve(n);
+  std::vector<std::uint32_t> index(n);
+  std::uint32_t kept = 0;
+  std::string key;
+  for (std::size_t v = 0; v < n; ++v) {
+    key.clear();
+    append_bits(key, mesh.positions[v]);
+    if (mesh.has_normals()) append_bits(key, mesh.normals[v]);
+    if (mesh.has_colors()) append_bits(key, mesh.colors[v]);
+    const auto [it, added] = first.try_emplace(key, kept);
+    index[v] = it->second;
+    if (added) ++kept;
+  }
+  if (kept == n) return mesh;
+  Mesh out;
+  out.units = mesh.units;
+  out.name = mesh.name;
+  out.material = mesh.material;
+  out.positions.resize(kept);
+  if (mesh.has_normals()) out.normals.resize(kept);
+  if (mesh.has_colors()) out.colors.resize(kept);
+  for (std::size_t v = 0; v < n; ++v) {
+    out.positions[index[v]] = mesh.positions[v];
+    if (mesh.has_normals()) out.normals[index[v]] = mesh.normals[v];
+    if (mesh.has_colors()) out.colors[index[v]] = mesh.colors[v];
+  }
+  out.texcoords = mesh.texcoords;
+  out.texcoord_triangles = mesh.triangles;
+  out.triangles.reserve(mesh.triangles.size());
+  for (const Triangle& t : mesh.triangles)
+    out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+  if (merged) *merged = n - kept;
+  return out;
 }
 
 } // namespace pdeface

@@ -75,16 +75,24 @@ Mesh drop_small_components(const Mesh& mesh, double min_fraction) {
   Mesh out;
   out.units = mesh.units;
   out.name = mesh.name;
+  out.material = mesh.material;
+  // Per-corner texture coordinates keep their table; the corners of the triangles kept still index it.
+  const bool per_vertex_uv = mesh.has_texcoords() && !mesh.has_corner_texcoords();
+  if (mesh.has_corner_texcoords()) out.texcoords = mesh.texcoords;
   for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
     if (size[label[v]] < min_size) continue;
     index[v] = static_cast<std::uint32_t>(out.positions.size());
     out.positions.push_back(mesh.positions[v]);
     if (mesh.has_normals()) out.normals.push_back(mesh.normals[v]);
     if (mesh.has_colors()) out.colors.push_back(mesh.colors[v]);
-    if (mesh.has_texcoords()) out.texcoords.push_back(mesh.texcoords[v]);
+    if (per_vertex_uv) out.texcoords.push_back(mesh.texcoords[v]);
   }
-  for (const Triangle& t : mesh.triangles)
-    if (index[t[0]] != UINT32_MAX) out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const Triangle& t = mesh.triangles[f];
+    if (index[t[0]] == UINT32_MAX) continue;
+    out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+    if (mesh.has_corner_texcoords()) out.texcoord_triangles.push_back(mesh.texcoord_triangles[f]);
+  }
   return out;
 }
 

@@ -1,8 +1,10 @@
 // The glTF reader and writer: the real scan, scenes, transforms, modes and encodings, round trips plain
 // and with Draco, and every class of bad input with its code and location.
 #include "../draco/quantisation.hpp"
+#include "format_test_support.hpp"
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/formats/formats.hpp"
 #include "pdeface/gltf/gltf.hpp"
 #include "pdeface_test.hpp"
 
@@ -232,8 +234,8 @@ TEST(GltfRead, AttributeEncodings) {
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->colors[0], Vec4f(1, 0, 0, 1)); // RGB gets alpha 1
   EXPECT_EQ(mesh->colors[3], Vec4f(0.2f, 0.2f, 0.2f, 1));
-  EXPECT_EQ(mesh->texcoords[2], Vec2f(1, 1));
-  EXPECT_EQ(mesh->texcoords[3], Vec2f(0, -1)); // -32768 clamps to -1
+  EXPECT_EQ(mesh->texcoords[2], Vec2f(1, 0)); // (1, 1) with glTF's v turned into ours: 1 - v
+  EXPECT_EQ(mesh->texcoords[3], Vec2f(0, 2)); // -32768 clamps to -1
   // Unsigned short RGBA colours, two elements only: a count that does not match POSITION.
   doc["meshes"][0]["primitives"][0]["attributes"]["COLOR_0"] = 2;
   Result<Mesh> bad = gltf::read(make_glb(doc, bin), "bad.glb");
@@ -318,7 +320,91 @@ TEST(GltfRoundTrip, EightBitColoursAndTexcoords) {
   Result<Mesh> back = gltf::read(*bytes, "face.glb");
   ASSERT_TRUE(back.ok()) << back.error().to_string();
   EXPECT_EQ(back->colors, face.colors);
-  EXPECT_EQ(back->texcoords, face.texcoords);
+  ASSERT_EQ(back->texcoords.size(), face.texcoords.size());
+  for (std::size_t i = 0; i < face.texcoords.size(); ++i) // v' = 1 - v twice: within half a float ulp of 1
+    ASSERT_TRUE((back->texcoords[i] - face.texcoords[i]).cwiseAbs().maxCoeff() <= 0x1p-24F) << i;
+}
+
+// The case: james.obj (6393 vertices, 636 corners on texture seams, a material library and a
+// 2400 × 1600 JPEG) as a GLB keeps every corner's texture coordinate and the photo's bytes.
+TEST(GltfRoundTrip, JamesKeepsItsSeamsAndPhoto) {
+  PDEFACE_FACE_OR_SKIP(path, "james.obj");
+  Notes notes;
+  const Result<formats::LoadedMesh> james = formats::read_mesh(path, {}, &notes);
+  ASSERT_TRUE(james.ok()) << james.error().to_string();
+  const Mesh& mesh = james->mesh;
+  ASSERT_TRUE(mesh.has_corner_texcoords());
+  std::size_t split = 0;
+  (void)with_vertex_texcoords(mesh, &split);
+  EXPECT_GT(split, 0u) << "seam vertices";
+  const Result<std::string> glb = formats::encode_mesh(mesh, "james.glb", {}, &notes);
+  ASSERT_TRUE(glb.ok()) << glb.error().to_string();
+  EXPECT_TRUE(has_note(notes, "vertices on texture seams written once per texture coordinate"));
+
+  const json doc = split_glb(*glb).first;
+  ASSERT_EQ(doc["images"].size(), 1u);
+  EXPECT_EQ(doc["images"][0]["mimeType"], "image/jpeg");
+  EXPECT_EQ(doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"], 0);
+  const Result<Mesh> back = gltf::read(*glb, "james.glb");
+  ASSERT_TRUE(back.ok()) << back.error().to_string();
+  EXPECT_EQ(back->vertex_count(), mesh.vertex_count()) << "the seams welded again";
+  EXPECT_EQ(back->triangles, mesh.triangles);
+  const std::vector<Vec2f> before = corner_texcoords(mesh), after = corner_texcoords(*back);
+  ASSERT_EQ(after.size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i)
+    ASSERT_TRUE((after[i] - before[i]).cwiseAbs().maxCoeff() <= 0x1p-24F) << "corner " << i;
+  ASSERT_TRUE(back->material && back->material->base_color_image);
+  EXPECT_EQ(back->material->base_color_image->bytes, *read_file(path.parent_path() / "james.jpg"))
+      << "the JPEG embedded unchanged";
+}
+
+TEST(GltfRead, ExternalImagesThroughTheResolverAndBadImages) {
+  json doc = json::parse(fixture("square.gltf"));
+  doc["images"] = {{{"uri", "skin%20photo.png"}}};
+  doc["textures"] = {{{"source", 0}}};
+  doc["materials"] = {{{"name", "skin"},
+                       {"pbrMetallicRoughness",
+                        {{"baseColorFactor", {0.5, 0.5, 0.5, 1}}, {"baseColorTexture", {{"index", 0}}}}}}};
+  doc["meshes"][0]["primitives"][0]["material"] = 0;
+  const std::string png = *read_file(test::fixtures() / "obj" / "texture.png");
+  Notes notes;
+  // Without a resolver: a note, the uri kept.
+  Result<Mesh> mesh = gltf::read(doc.dump(), "t.gltf", &notes);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  ASSERT_TRUE(mesh->material && mesh->material->base_color_image);
+  EXPECT_EQ(mesh->material->name, "skin");
+  EXPECT_EQ(mesh->material->base_color, Vec4f(0.5F, 0.5F, 0.5F, 1));
+  EXPECT_TRUE(mesh->material->base_color_image->bytes.empty());
+  EXPECT_TRUE(has_note(notes, "texture image 'skin%20photo.png' not read"));
+  // With one.
+  const Resolver resolve = [&](std::string_view) -> Result<std::string> { return png; };
+  mesh = gltf::read(doc.dump(), "t.gltf", nullptr, resolve);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  EXPECT_EQ(mesh->material->base_color_image->bytes, png);
+  // A corrupt image that is there: an error naming it.
+  const Resolver corrupt = [&](std::string_view) -> Result<std::string> { return png.substr(0, 20); };
+  const Error e = test::error_of(gltf::read(doc.dump(), "t.gltf", nullptr, corrupt));
+  EXPECT_EQ(e.code, ErrorCode::Truncated) << e.to_string();
+  // A texture index out of range.
+  doc["materials"][0]["pbrMetallicRoughness"]["baseColorTexture"]["index"] = 3;
+  EXPECT_EQ(test::error_of(gltf::read(doc.dump(), "t.gltf")).code, ErrorCode::IndexOutOfRange);
+}
+
+TEST(GltfBadInput, EmbeddedImageBombIsRefusedAtItsByte) {
+  Mesh face = small_face();
+  face.texcoords.assign(face.vertex_count(), Vec2f(0.5F, 0.5F));
+  std::string png = *read_file(test::fixtures() / "obj" / "texture.png");
+  face.material = Material{.name = "m",
+                           .base_color = Vec4f::Ones(),
+                           .base_color_image = Image{.bytes = png, .mime_type = "image/png", .uri = {}}};
+  Result<std::string> glb = gltf::write(face);
+  ASSERT_TRUE(glb.ok()) << glb.error().to_string();
+  const std::size_t at = glb->find(png);
+  ASSERT_NE(at, std::string::npos);
+  (*glb)[at + 16] = '\x7f'; // the width: 2 billion pixels
+  const Error e = test::error_of(gltf::read(*glb, "bomb.glb"));
+  EXPECT_EQ(e.code, ErrorCode::CountTooLarge) << e.to_string();
+  EXPECT_EQ(e.where.byte, at + 16) << e.to_string();
 }
 
 TEST(GltfRoundTrip, DracoWithinHalfAQuantisationStep) {

@@ -26,6 +26,10 @@ Result<Mesh> read_obj(std::string_view text, Notes* notes = nullptr) {
 
 std::string fixture(std::string_view name) { return pdeface::test::fixture("obj", name); }
 
+Result<Mesh> read_with_notes(std::string_view text, std::string_view source, Notes* notes) {
+  return obj::read(text, source, notes);
+}
+
 Mesh round_trip(const Mesh& mesh, const obj::WriteOptions& options = {}) {
   const Result<std::string> text = obj::write(mesh, options);
   EXPECT_TRUE(text.ok()) << text.error().to_string();
@@ -61,9 +65,30 @@ TEST(ObjRead, JamesHasTheManifestCountsAndSeams) {
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->vertex_count(), 6393u);
   EXPECT_EQ(mesh->triangle_count(), 12228u);
-  EXPECT_FALSE(mesh->has_texcoords()) << "6680 vt for 6393 v: seams";
-  EXPECT_TRUE(has_note(notes, "texture coordinates dropped:")) << (notes.empty() ? "" : notes.front());
+  ASSERT_TRUE(mesh->has_corner_texcoords()) << "6393 v, 6680 vt, 636 corners on seams: kept per corner";
+  EXPECT_EQ(mesh->texcoords.size(), 6680u);
+  EXPECT_EQ(mesh->texcoord_triangles.size(), mesh->triangle_count());
+  EXPECT_TRUE(has_note(notes, "material library './james.obj.mtl' not read")) << "no resolver";
+  EXPECT_FALSE(mesh->material);
   EXPECT_EQ(mesh->units, Units::Unknown);
+}
+
+TEST(ObjRead, JamesWithItsMaterialAndPhoto) {
+  PDEFACE_FACE_OR_SKIP(path, "james.obj");
+  Notes notes;
+  const Resolver beside = [dir = path.parent_path()](std::string_view name) {
+    return read_file(dir / std::string(name));
+  };
+  const Result<Mesh> mesh = obj::read(*read_file(path), "james.obj", &notes, beside);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  ASSERT_TRUE(mesh->material && mesh->material->base_color_image);
+  EXPECT_EQ(mesh->material->name, "material_0");
+  EXPECT_EQ(mesh->material->base_color, Vec4f::Ones()) << "Kd is the colour only without a map_Kd";
+  const Image& image = *mesh->material->base_color_image;
+  EXPECT_EQ(image.uri, "james.jpg");
+  EXPECT_EQ(image.mime_type, "image/jpeg");
+  EXPECT_EQ(image.bytes, *read_file(path.parent_path() / "james.jpg"));
+  EXPECT_TRUE(notes.empty()) << notes.front();
 }
 
 // ---- fixtures -----------------------------------------------------------------------------------------
@@ -80,7 +105,9 @@ TEST(ObjRead, AttributesThatMapOneToOneAreKept) {
   EXPECT_EQ(mesh->texcoords[3], Vec2f(0, 1));
   EXPECT_EQ(mesh->units, Units::Millimetres);
   EXPECT_EQ(mesh->name, "handmade square");
-  EXPECT_TRUE(notes.empty()) << notes.front();
+  EXPECT_EQ(notes,
+            (Notes{"attributes.obj: material library 'never_opened.mtl' not read: reading from memory, no "
+                   "folder to find it in"}));
 }
 
 TEST(ObjRead, PolygonsRelativeIndicesAndMixedCorners) {
@@ -95,14 +122,113 @@ TEST(ObjRead, PolygonsRelativeIndicesAndMixedCorners) {
   EXPECT_TRUE(has_note(notes, "statements not read: l, vp"));
 }
 
-TEST(ObjRead, SeamsDropTextureCoordinatesWithANote) {
+TEST(ObjRead, SeamsKeepTextureCoordinatesPerCorner) {
   Notes notes;
   const Result<Mesh> mesh = obj::read(fixture("seams.obj"), "seams.obj", &notes);
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->vertex_count(), 4u) << "counts kept: no vertex is split";
-  EXPECT_FALSE(mesh->has_texcoords());
-  EXPECT_TRUE(
-      has_note(notes, "texture coordinates dropped: 1 face corners give their vertex a different one"));
+  ASSERT_TRUE(mesh->has_corner_texcoords());
+  EXPECT_EQ(mesh->texcoord_triangles, (std::vector<Triangle>{{0, 1, 2}, {2, 2, 3}}));
+  EXPECT_EQ(mesh->texcoords.size(), 4u);
+  EXPECT_EQ(corner_texcoords(*mesh)[3], Vec2f(1, 1)) << "vertex 1 on the second face";
+  EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
+TEST(ObjWrite, SeamsRoundTripPerCorner) {
+  const Mesh mesh = *obj::read(fixture("seams.obj"), "seams.obj");
+  const Mesh back = round_trip(mesh);
+  EXPECT_EQ(back.positions, mesh.positions);
+  EXPECT_EQ(back.triangles, mesh.triangles);
+  EXPECT_EQ(corner_texcoords(back), corner_texcoords(mesh));
+}
+
+TEST(ObjRead, MaterialLibraryAndImageThroughTheResolver) {
+  const std::string png = fixture("texture.png");
+  std::vector<std::string> asked;
+  const Resolver resolve = [&](std::string_view name) -> Result<std::string> {
+    asked.emplace_back(name);
+    if (name == "lib/m.mtl")
+      return std::string("newmtl other\nKd 1 0 0\nnewmtl skin\nKd 0.5 0.25 0.125\nd 0.5\n"
+                         "map_Kd -s 1 1 1 -clamp on photo 1.png\n");
+    if (name == "lib/photo 1.png") return png;
+    return make_error(ErrorCode::Io, "no such file", std::string(name));
+  };
+  Notes notes;
+  const Result<Mesh> mesh =
+      obj::read("mtllib lib/m.mtl\n"s + std::string(kTriangle) + "vt 0 0\nusemtl skin\nf 1/1 2/1 3/1\n",
+                "t.obj", &notes, resolve);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  EXPECT_EQ(asked, (std::vector<std::string>{"lib/m.mtl", "lib/photo 1.png"}));
+  ASSERT_TRUE(mesh->material);
+  EXPECT_EQ(mesh->material->name, "skin");
+  EXPECT_EQ(mesh->material->base_color, Vec4f(1, 1, 1, 0.5F)) << "with a map_Kd the photo is the colour";
+  ASSERT_TRUE(mesh->material->base_color_image);
+  EXPECT_EQ(mesh->material->base_color_image->bytes, png);
+  EXPECT_EQ(mesh->material->base_color_image->mime_type, "image/png");
+  EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
+TEST(ObjRead, MissingLibraryOrImageIsANoteNotAFailure) {
+  const Resolver nothing = [](std::string_view name) -> Result<std::string> {
+    return make_error(ErrorCode::Io, "no such file", std::string(name));
+  };
+  Notes notes;
+  Result<Mesh> mesh =
+      obj::read("mtllib m.mtl\n"s + std::string(kTriangle) + "f 1 2 3\n", "t.obj", &notes, nothing);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  EXPECT_FALSE(mesh->material);
+  EXPECT_TRUE(has_note(notes, "material library 'm.mtl' not read (no such file)"));
+
+  const Resolver library_only = [](std::string_view name) -> Result<std::string> {
+    if (name == "m.mtl") return std::string("newmtl a\nKd 0.5 0.5 0.5\nmap_Kd gone.jpg\n");
+    return make_error(ErrorCode::Io, "no such file", std::string(name));
+  };
+  notes.clear();
+  mesh = obj::read("mtllib m.mtl\n"s + std::string(kTriangle) + "f 1 2 3\n", "t.obj", &notes, library_only);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  ASSERT_TRUE(mesh->material && mesh->material->base_color_image);
+  EXPECT_TRUE(mesh->material->base_color_image->bytes.empty());
+  EXPECT_EQ(mesh->material->base_color_image->uri, "gone.jpg");
+  EXPECT_TRUE(has_note(notes, "texture image 'gone.jpg' not read (no such file)"));
+}
+
+TEST(ObjRead, CorruptOrHugeImageIsAnErrorNamingIt) {
+  std::string bomb = fixture("texture.png");
+  bomb[16] = '\x7f'; // width 0x7f0000xx: two billion pixels wide
+  for (const auto& [image, code] :
+       {std::pair{bomb, ErrorCode::CountTooLarge},
+        std::pair{std::string("\xFF\xD8\xFF\xE0\x00\x10JFIF"), ErrorCode::Truncated}}) {
+    const Resolver resolve = [&](std::string_view name) -> Result<std::string> {
+      if (name == "m.mtl") return std::string("newmtl a\nmap_Kd face.png\n");
+      return image;
+    };
+    const Error e = error_of(
+        obj::read("mtllib m.mtl\n"s + std::string(kTriangle) + "f 1 2 3\n", "t.obj", nullptr, resolve));
+    EXPECT_EQ(e.code, code) << e.to_string();
+    EXPECT_EQ(e.source, "face.png");
+    EXPECT_TRUE(e.where.byte.has_value()) << e.to_string();
+  }
+}
+
+TEST(ObjWrite, MaterialLibraryNamesTheImage) {
+  Mesh mesh = *read_obj(std::string(kTriangle) + "vt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n");
+  mesh.material =
+      Material{.name = "skin tone", .base_color = Vec4f(0.5F, 0.25F, 1, 1), .base_color_image = {}};
+  Notes notes;
+  const Result<std::string> text = obj::write(mesh, {.material_library = "out.mtl"}, &notes);
+  ASSERT_TRUE(text.ok()) << text.error().to_string();
+  EXPECT_NE(text->find("mtllib out.mtl\n"), std::string::npos);
+  EXPECT_NE(text->find("usemtl skin_tone\n"), std::string::npos);
+  EXPECT_EQ(obj::write_material_library(mesh, "out.jpg"),
+            "# written by pdeface\nnewmtl skin_tone\nKd 0.5 0.25 1\nd 1\nillum 1\nmap_Kd out.jpg\n");
+  EXPECT_TRUE(notes.empty()) << notes.front();
+  ASSERT_TRUE(obj::write(mesh, {}, &notes).ok());
+  EXPECT_TRUE(has_note(notes, "material dropped: no material library"));
+}
+
+TEST(ObjRead, TextureIndexOutOfRangeIsAnError) {
+  expect_errors_at(read_with_notes, "t.obj",
+                   {{std::string(kTriangle) + "vt 0 0\nf 1/1 2/1 3/2\n", ErrorCode::IndexOutOfRange, 5, 11}});
 }
 
 TEST(ObjRead, PointCloudWithOneNormalPerVertex) {
@@ -219,7 +345,7 @@ TEST(ObjReadErrors, EveryClassWithItsLineAndColumn) {
       {t + "f 1//1 2//1 3//1\n", ErrorCode::IndexOutOfRange, 4, 3},
       {t + "v 1 1 \0 0\n"s, ErrorCode::Malformed, 4, 7},
   };
-  expect_errors_at(obj::read, "t.obj", cases);
+  expect_errors_at(read_with_notes, "t.obj", cases);
 }
 
 TEST(ObjReadErrors, FaceWithMoreCornersThanTinyobjloaderCounts) {

@@ -35,15 +35,15 @@ TEST(OffRead, CommentsBlankLinesQuadsAndFaceColours) {
   EXPECT_TRUE(has_note(notes, "values after face indices (face colours?) ignored (line 11 and later)"));
 }
 
-// OpenMesh reads OFF streams as plain OFF: COFF colours and NOFF normals are dropped, with notes.
-TEST(OffRead, ColoursAndNormalsAreDropped) {
+// COFF colours are ours to read (OpenMesh reads OFF streams as plain OFF); NOFF normals are dropped.
+TEST(OffRead, ColoursReadNormalsDropped) {
   Notes notes;
   const Result<Mesh> mesh = off::read(fixture("off", "colored_normals.off"), "colored_normals.off", &notes);
   ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
   EXPECT_EQ(mesh->positions[2], Vec3(0, 1, 0));
   EXPECT_EQ(mesh->triangles, (std::vector<Triangle>{{0, 1, 2}}));
-  EXPECT_FALSE(mesh->has_colors() || mesh->has_normals());
-  EXPECT_TRUE(has_note(notes, "COFF vertex colours dropped"));
+  EXPECT_FALSE(mesh->has_normals());
+  EXPECT_EQ(mesh->colors, (std::vector<Vec4f>{{1, 0, 0, 1}, {0, 1, 0, 1}, {0.5F, 0.25F, 0.75F, 1}}));
   EXPECT_TRUE(has_note(notes, "NOFF normals dropped"));
   EXPECT_TRUE(has_note(notes, "values after face indices"));
 }
@@ -53,12 +53,12 @@ TEST(OffWrite, SampleFaceRoundTrip) {
   Notes notes;
   const Result<std::string> bytes = off::write(mesh, &notes);
   ASSERT_TRUE(bytes.ok()) << bytes.error().to_string();
-  EXPECT_TRUE(bytes->starts_with("OFF\n# units mm\n"));
+  EXPECT_TRUE(bytes->starts_with("COFF\n# units mm\n"));
   EXPECT_TRUE(has_note(notes, "normals dropped: OFF cannot store them"));
-  EXPECT_TRUE(has_note(notes, "vertex colours dropped: OFF cannot store them"));
   const Result<Mesh> read = read_off(*bytes);
   ASSERT_TRUE(read.ok()) << read.error().to_string();
   expect_same_geometry(mesh, *read);
+  EXPECT_EQ(read->colors, byte_rounded(mesh.colors)) << "COFF: 8-bit colours";
   EXPECT_EQ(read->units, Units::Millimetres);
 }
 

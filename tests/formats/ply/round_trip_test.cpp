@@ -26,7 +26,7 @@ struct Encoding {
 
 constexpr Encoding kEncodings[] = {
     {"x.ply", false, false, true, true, true},   {"x.ply", true, false, true, true, true},
-    {"x.obj", false, false, true, true, false},  {"x.off", false, false, false, false, false},
+    {"x.obj", false, false, true, true, false},  {"x.off", false, false, false, true, true}, // COFF
     {"x.stl", false, true, false, false, false}, {"x.stl", true, true, false, false, false},
 };
 

@@ -183,15 +183,56 @@ INSTANTIATE_TEST_SUITE_P(
                          "normals dropped: normalPerVertex FALSE gives one per face"},
         DroppedAttribute{"TooFewColours", "color Color { color [ 1 0 0, 0 1 0 ] }",
                          "colours dropped: 2 of them for 4 points"},
-        DroppedAttribute{
-            "Seam", "texCoord TextureCoordinate { point [ 0 0, 1 0 ] } texCoordIndex [ 0 1 0 -1 0 1 1 -1 ]",
-            "texture coordinates dropped: vertex 2 has two texCoordIndex values (0 and 1)"},
+        DroppedAttribute{"TexCoordIndexLength",
+                         "texCoord TextureCoordinate { point [ 0 0, 1 0 ] } texCoordIndex [ 0 1 0 -1 ]",
+                         "texture coordinates dropped: texCoordIndex has 4 entries where coordIndex has 8"},
         DroppedAttribute{"IndexLength", "color Color { color [ 1 0 0 ] } colorIndex [ 0 0 0 -1 ]",
                          "colours dropped: colorIndex has 4 entries where coordIndex has 8"},
         DroppedAttribute{"IndexSeparators",
                          "color Color { color [ 1 0 0 ] } colorIndex [ 0 0 -1 0 0 0 0 -1 ]",
                          "colorIndex and coordIndex do not end polygons at the same places"}),
     [](const auto& test) { return std::string(test.param.name); });
+
+// A seam: vertex 2 has texture coordinate 0 on the first triangle and 1 on the second; kept per corner.
+TEST(VrmlRead, SeamsKeepTextureCoordinatesPerCornerAndTheAppearance) {
+  const std::string png = *read_file(test::fixtures() / "obj" / "texture.png");
+  std::vector<std::string> asked;
+  const Resolver resolve = [&](std::string_view name) -> Result<std::string> {
+    asked.emplace_back(name);
+    return png;
+  };
+  Notes notes;
+  const Result<Mesh> mesh = vrml::read(R"(#VRML V2.0 utf8
+Shape {
+  appearance Appearance { material Material { diffuseColor 0.5 0.25 1 transparency 0.5 }
+                          texture ImageTexture { url [ "skin.png" "http://example.org/skin.png" ] } }
+  geometry IndexedFaceSet {
+    coord Coordinate { point [ 0 0 0, 1 0 0, 1 1 0, 0 1 0 ] }
+    coordIndex [ 0 1 2 -1, 0 2 3 -1 ]
+    texCoord TextureCoordinate { point [ 0 0, 1 0 ] } texCoordIndex [ 0 1 0 -1 0 1 1 -1 ] } }
+)",
+                                       "seam.wrl", &notes, resolve);
+  ASSERT_TRUE(mesh.ok()) << mesh.error().to_string();
+  EXPECT_EQ(mesh->vertex_count(), 4U);
+  ASSERT_TRUE(mesh->has_corner_texcoords());
+  EXPECT_EQ(mesh->texcoord_triangles, (std::vector<Triangle>{{0, 1, 0}, {0, 1, 1}}));
+  ASSERT_TRUE(mesh->material && mesh->material->base_color_image);
+  EXPECT_EQ(mesh->material->base_color, Vec4f(1, 1, 1, 0.5F)) << "an RGB texture replaces diffuseColor";
+  EXPECT_EQ(mesh->material->base_color_image->bytes, png);
+  EXPECT_EQ(asked, (std::vector<std::string>{"skin.png"}));
+  EXPECT_TRUE(notes.empty()) << notes.front();
+}
+
+TEST(VrmlRead, TexCoordIndexOutOfRangeIsAnError) {
+  const Result<Mesh> mesh = read_vrml(R"(#VRML V2.0 utf8
+Shape { geometry IndexedFaceSet { coord Coordinate { point [ 0 0 0, 1 0 0, 1 1 0 ] } coordIndex [ 0 1 2 -1 ]
+  texCoord TextureCoordinate { point [ 0 0, 1 0 ] } texCoordIndex [ 0 1 2 -1 ] } }
+)");
+  ASSERT_FALSE(mesh.ok());
+  EXPECT_EQ(mesh.error().code, ErrorCode::IndexOutOfRange);
+  EXPECT_EQ(mesh.error().where.line, 3U);
+  EXPECT_EQ(mesh.error().where.column, 73U);
+}
 
 TEST(VrmlRead, AttributesOnlySomeShapesHaveAreDroppedWithANote) {
   Notes notes;

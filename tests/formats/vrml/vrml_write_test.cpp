@@ -83,6 +83,26 @@ TEST(VrmlWrite, TextureCoordinatesRoundTrip) {
   EXPECT_EQ(round_trip(mesh).texcoords, mesh.texcoords);
 }
 
+TEST(VrmlWrite, SeamsAndAppearanceRoundTrip) {
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0.5F, 0.5F}};
+  mesh.texcoord_triangles = {{0, 1, 2}, {3, 2, 0}};
+  mesh.material = Material{.name = "m", .base_color = Vec4f(0.5F, 0.25F, 1, 1), .base_color_image = {}};
+  const Result<std::string> text = vrml::write(mesh, {.precision = 9, .texture_url = "face.jpg"});
+  ASSERT_TRUE(text.ok()) << text.error().to_string();
+  EXPECT_NE(text->find("texture ImageTexture { url \"face.jpg\" }"), std::string::npos) << *text;
+  Notes notes;
+  const Result<Mesh> back = vrml::read(*text, "t.wrl", &notes);
+  ASSERT_TRUE(back.ok()) << back.error().to_string();
+  EXPECT_EQ(back->triangles, mesh.triangles);
+  EXPECT_EQ(corner_texcoords(*back), corner_texcoords(mesh));
+  ASSERT_TRUE(back->material && back->material->base_color_image);
+  EXPECT_EQ(back->material->base_color_image->uri, "face.jpg");
+  EXPECT_TRUE(test::has_note(notes, "texture image 'face.jpg' not read"));
+}
+
 TEST(VrmlWrite, AlphaIsDroppedWithANote) {
   Mesh mesh = unit_square();
   mesh.colors.assign(4, Vec4f(1, 0.5F, 0, 0.5F));

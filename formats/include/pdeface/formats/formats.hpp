@@ -3,6 +3,8 @@
 //! Reading and writing any supported format by file name: the format is chosen by extension (and, for
 //! reading, checked against the content), bytes are parsed in memory, and files are written atomically.
 
+#include "pdeface/core/file.hpp"
+#include "pdeface/core/image.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 
@@ -30,6 +32,7 @@ struct FormatInfo {
   bool lossy = false; //!< positions are quantised (Draco) or the surface is rebuilt (.pdef)
   bool writable =
       true; //!< `encode_mesh` writes it (not .pdef: a face's curves come from a scan, `pdeface encode`)
+  bool materials = false; //!< keeps a material and its base-colour image (embedded, or a file beside it)
 };
 
 //! Every format, in a stable order.
@@ -55,7 +58,22 @@ struct ReadOptions {
   //! `.pdef`: read only the file's first bytes (0: all): a version 3 file cut in its residual layer
   //! decodes to a coarser surface (docs/pdef-format.md).
   std::size_t pdef_max_bytes = 0;
+  //! Where the files a mesh file refers to (OBJ's material library and its image, glTF's and VRML's image
+  //! files) come from. Empty: `read_mesh(path)` reads them beside the file (`files_beside`), `read_mesh`
+  //! of bytes leaves them out with a note.
+  Resolver resolver;
+  //! Follow such references at all (false: each is a note).
+  bool companions = true;
+  //! The most bytes a referenced file may have (`files_beside`).
+  std::uint64_t max_companion_bytes = std::uint64_t{64} << 20;
 };
+
+//! A resolver reading the files a file at `file` refers to, relative to its folder: a relative path that
+//! stays inside that folder (no `..` above it, no absolute path, no URI scheme; `%XX` escapes decoded), of
+//! at most `max_bytes`. Errors (notes to the reader): `UnsupportedFormat` for a reference it will not
+//! follow, `Io` and `CountTooLarge` from `read_file`.
+[[nodiscard]] Resolver files_beside(const std::filesystem::path& file,
+                                    std::uint64_t max_bytes = std::uint64_t{64} << 20);
 
 struct LoadedMesh {
   Mesh mesh;
@@ -77,6 +95,8 @@ struct WriteOptions {
   bool draco_in_gltf = false;   //!< GLB: compress with KHR_draco_mesh_compression
   int draco_bits = 14;          //!< Draco and Draco-in-glTF: position quantisation bits (1..24)
   int draco_level = 7;          //!< Draco compression level (0..10; 0 keeps vertex order)
+  int draco_uv_bits = 12;       //!< Draco: texture coordinate quantisation bits (1..24; `draco_encoder -qt`)
+  int draco_color_bits = 8;     //!< Draco: colours as normalised integers of 8 or 16 bits
 };
 
 //! Encodes a mesh in the format of `path` (or `options.format`). Attributes the format cannot hold are
@@ -84,7 +104,18 @@ struct WriteOptions {
 [[nodiscard]] Result<std::string> encode_mesh(const Mesh& mesh, const std::filesystem::path& path,
                                               const WriteOptions& options = {}, Notes* notes = nullptr);
 
-//! `encode_mesh`, then an atomic write: on any error no file is left at `path`.
+//! Every file a mesh is written as: the file at `path` first, then what it refers to beside it. OBJ: a
+//! material library `<stem>.mtl` and the image `<stem>.jpg` (or `.png`); PLY and VRML: the image
+//! `<stem>.jpg`, named in the file (a PLY `comment TextureFile`, a VRML `ImageTexture` url). An image the
+//! mesh names but whose bytes were not read is referred to by its name, not written (a note says so).
+//! Errors: those of `encode_mesh`.
+[[nodiscard]] Result<std::vector<OutputFile>> encode_files(const Mesh& mesh,
+                                                           const std::filesystem::path& path,
+                                                           const WriteOptions& options = {},
+                                                           Notes* notes = nullptr);
+
+//! `encode_files`, then an atomic write of them all (`write_files_atomic`): on any error no file is left
+//! at `path` or beside it. Returns the bytes of the file at `path`.
 [[nodiscard]] Result<std::size_t> write_mesh(const Mesh& mesh, const std::filesystem::path& path,
                                              const WriteOptions& options = {}, Notes* notes = nullptr);
 

@@ -25,7 +25,9 @@ inline constexpr std::size_t kMaxElementsPerByte = 128;
 
 //! Decodes a Draco mesh or point cloud (bitstream 2.2 for meshes, 2.3 for point clouds, as written by
 //! Draco 1.4 and later): positions, normals, colours (uint8/uint16/float, RGB or RGBA) and texture
-//! coordinates, one value per point. Units are read from the geometry metadata entry "units" when present.
+//! coordinates, one value per point; points that differ in their texture coordinate only (a seam split by
+//! the writer) are welded, the texture coordinates becoming per corner (`weld_texcoord_seams`). Units are
+//! read from the geometry metadata entry "units" when present.
 //! Errors: `Empty`, `BadMagic` (byte 0), `UnsupportedVersion` (byte 5), `Truncated`, `Malformed`,
 //! `CountTooLarge` (at the byte of the count), `NonFinite`, `IndexOutOfRange`.
 [[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr);
@@ -46,8 +48,9 @@ struct WriteOptions {
 //! Checks the options' ranges up front. Errors: `InvalidArgument`, naming the option and its range.
 [[nodiscard]] Result<void> check(const WriteOptions& options);
 
-//! Encodes a mesh (or, without triangles, a point cloud). Positions are quantised (the maximum error per
-//! axis is half a step, step = largest bounding-box side / (2^position_bits - 1)); a note says how large
+//! Encodes a mesh (or, without triangles, a point cloud); per-corner texture coordinates split their seam
+//! vertices (`with_vertex_texcoords`); the material is not kept. Positions are quantised (the maximum error
+//! per axis is half a step, step = largest bounding-box side / (2^position_bits - 1)); a note says how large
 //! in the mesh's units. Units are written as the geometry metadata entry "units".
 //! Errors: `InvalidArgument` (options), `Empty` (no vertices), errors of `validate`, `Malformed` when
 //! libdraco refuses the mesh.

@@ -7,6 +7,7 @@
 //! third_party_notes/tinygltf.md). Units are known only from our marker `asset.extras.units` ("mm", ...):
 //! glTF says metres, but scanners write millimetres into it.
 
+#include "pdeface/core/image.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/draco/draco.hpp"
@@ -27,7 +28,15 @@ namespace pdeface::gltf {
 //! header or chunk; JSON syntax: at the line and column of a `.gltf`, the byte of a `.glb`),
 //! `UnsupportedFormat` (external buffers, sparse accessors, required extensions we cannot honour),
 //! `IndexOutOfRange` and `NonFinite` (at the byte of the value when it lies in the GLB's BIN chunk).
-[[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr);
+//! The material of the first primitive that has one: its name, `baseColorFactor` and `baseColorTexture`
+//! (TEXCOORD_0 only), the image embedded (a buffer view, a data URI) or, for an external `uri`, obtained
+//! through `resolve` (without one, or when it fails, a note: the image keeps its uri only). Images are
+//! never decoded, only their headers checked (`inspect_image`). Texture coordinates are turned from glTF's
+//! top-left origin to ours (v' = 1 − v), and vertices that repeat another's position, normal and colour (a
+//! writer's split at texture seams) are welded, their texture coordinates becoming per corner.
+//! Errors, also: those of `inspect_image` for an embedded image (at its byte in a GLB).
+[[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr,
+                                const Resolver& resolve = {});
 
 struct WriteOptions {
   bool binary = true; //!< GLB; false writes a `.gltf` JSON document with the buffer as a data URI
@@ -38,8 +47,10 @@ struct WriteOptions {
 //! TRIANGLES, or POINTS for a point cloud), one node, one scene. POSITION as float32 (with min and max; a
 //! note tells how far doubles were rounded); NORMAL of unit length (computed with `vertex_normals` for a
 //! mesh without normals; +z for vertices on no triangle); COLOR_0 as normalised unsigned bytes when every
-//! channel is a multiple of 1/255, else as floats (RGBA); TEXCOORD_0; indices u16 below 65535 vertices,
-//! else u32. With `options.draco`, triangle meshes are compressed with `KHR_draco_mesh_compression`
+//! channel is a multiple of 1/255, else as floats (RGBA); TEXCOORD_0 (v' = 1 − v; per-corner texture
+//! coordinates split their seam vertices, `with_vertex_texcoords`); the material (base colour factor, not
+//! metallic, fully rough) with its JPEG or PNG image embedded as a buffer view; indices u16 below 65535
+//! vertices, else u32. With `options.draco`, triangle meshes are compressed with `KHR_draco_mesh_compression`
 //! (point clouds, which the extension cannot hold, are written uncompressed with a note).
 //! Errors: `InvalidArgument` (Draco options), `Empty`, those of `validate` and of the Draco encoder.
 [[nodiscard]] Result<std::string> write(const Mesh& mesh, const WriteOptions& options = {},

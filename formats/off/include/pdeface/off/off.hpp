@@ -12,12 +12,14 @@
 
 namespace pdeface::off {
 
-//! Parses ASCII OFF (comments allowed); polygons fan-triangulated. COFF/NOFF are accepted but their
-//! colours and normals are dropped with a note, as are values after a face's indices. Units come from a
-//! `# units mm` comment. Binary OFF and 4D/nD OFF are refused.
+//! Parses ASCII OFF (comments allowed); polygons fan-triangulated. COFF colours are read (r g b [a] after
+//! the coordinates, and after NOFF's normals: integers 0..255, or reals 0..1 when written with a '.' or an
+//! exponent; a vertex without them is an error at its line); NOFF normals are dropped with a note, as are
+//! values after a face's indices. Units come from a `# units mm` comment. Binary OFF and 4D/nD OFF are
+//! refused.
 [[nodiscard]] Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes = nullptr);
-//! Writes plain OFF (positions and faces, 9 significant digits) and a `# units mm` comment when known;
-//! other attributes are dropped with a note.
+//! Writes OFF (positions and faces, 9 significant digits), COFF with r g b a as integers 0..255 when the
+//! mesh has colours, and a `# units mm` comment when known; other attributes are dropped with a note.
 [[nodiscard]] Result<std::string> write(const Mesh& mesh, Notes* notes = nullptr);
 
 } // namespace pdeface::off
