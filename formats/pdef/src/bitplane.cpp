@@ -371,7 +371,7 @@ template <typename Coder, bool Encoding> struct Planes {
     const Band& band = bands[e.band];
     constexpr std::size_t side = std::size_t{1} << (T - 1); // a child's
     const bool right = e.x + side < band.w, down = e.y + side < band.h;
-    const std::size_t children = (right ? 2 : 1) * (down ? 2 : 1);
+    const std::size_t children = std::size_t{right ? 2u : 1u} * (down ? 2u : 1u);
     const std::size_t corner = (band.y0 + e.y) * width + band.x0 + e.x; // T = 1: the first child
     bool any = false;
     for (std::size_t i = 0; i < children; ++i) {
