@@ -143,6 +143,41 @@ TEST(PdeMesher, ADegenerateGridGetsZeroNormalsNotNaN) {
   }
 }
 
+// The displaced mesh: every vertex moved along the mesh's own normal by its offset times the scale, then
+// given the normals the mesher gives the moved grid (the same as a plain mesh's when nothing moved), in
+// both orientations of the map.
+TEST(PdeMesher, DisplacedMeshMovesAlongTheNormalsAndRemakesThem) {
+  for (const bool mirror : {false, true}) {
+    const GridMesher mesher(face_surface(), 41, 53, {.map = similarity(mirror)});
+    const Mesh plain = mesher.mesh(Units::Millimetres);
+    const std::vector<double> zero(mesher.vertex_count(), 0.0);
+    const Mesh same = mesher.displaced_mesh(zero, 2.0, Units::Millimetres);
+    EXPECT_EQ(same.positions, plain.positions);
+    EXPECT_EQ(same.normals, plain.normals);
+    EXPECT_EQ(same.triangles, plain.triangles);
+    EXPECT_EQ(same.units, Units::Millimetres);
+    std::vector<double> offsets(mesher.vertex_count());
+    for (std::size_t v = 0; v < offsets.size(); ++v)
+      offsets[v] = 0.3 * std::sin(0.05 * static_cast<double>(v));
+    const Mesh moved = mesher.displaced_mesh(offsets, 0.5);
+    double worst_normal = 0;
+    for (std::size_t v = 0; v < offsets.size(); ++v) {
+      const Vec3 expected = plain.positions[v] + (offsets[v] * 0.5) * plain.normals[v].cast<double>();
+      EXPECT_LT((moved.positions[v] - expected).norm(), 1e-12) << v;
+      worst_normal = std::max(worst_normal, std::abs(static_cast<double>(moved.normals[v].norm()) - 1));
+    }
+    EXPECT_LT(worst_normal, 1e-5);
+    // The moved grid's normals are those of its own points: a mesher's normals of the moved positions.
+    const std::size_t middle = 26 * 41 + 20;
+    const Vec3 du = moved.positions[middle + 1] - moved.positions[middle - 1];
+    const Vec3 dv = moved.positions[middle + 41] - moved.positions[middle - 41];
+    const Vec3 n = du.cross(dv).normalized() * (mirror ? -1.0 : 1.0);
+    EXPECT_GT(n.dot(moved.normals[middle].cast<double>()), 1 - 1e-6);
+  }
+  EXPECT_THROW((void)GridMesher(face_surface(), 5, 6).displaced_mesh(std::vector<double>(29), 1.0),
+               std::invalid_argument);
+}
+
 TEST(PdeMesher, RefusesBadCalls) {
   const Surface& s = face_surface();
   EXPECT_THROW(GridMesher(s, 1, 5), std::invalid_argument);

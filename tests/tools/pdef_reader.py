@@ -215,7 +215,7 @@ def read_heights(r, X, J, K, step):
 ALPHA, BETA = -1.586134342059924, -0.052980118572961
 GAMMA, DELTA = 0.882911075530934, 0.443506852043971
 ZETA_LOW, ZETA_HIGH = 1.139764007654642, 0.887277075635907
-BLOCK = 16
+LEVELS = 4  # node levels: sides 2, 4, 8, 16; level-4 nodes are the roots
 
 
 class Starved(Exception):
@@ -223,14 +223,15 @@ class Starved(Exception):
 
 
 class RangeDecoder:
-    """LZMA's binary range decoder over the stream's bytes held; 21 adaptive probabilities of a 0."""
+    """LZMA's binary range decoder over the stream's bytes held: 145 adaptive probabilities of a 0
+    (0-143 starting at 1280, 144 at 1024), and even decisions."""
 
     def __init__(self, stream):
         self.data, self.pos, self.starved = stream, 0, False
         self.range, self.code = 0xFFFFFFFF, 0
         for _ in range(4):
             self.code = (self.code << 8) | self.next_byte()
-        self.p = [1024] * 21
+        self.p = [1280] * 144 + [1024]
 
     def next_byte(self):
         if self.pos >= len(self.data):
@@ -238,6 +239,11 @@ class RangeDecoder:
             return 0
         self.pos += 1
         return self.data[self.pos - 1]
+
+    def normalise(self):
+        while self.range < 2 ** 24:
+            self.range = (self.range << 8) & 0xFFFFFFFF
+            self.code = ((self.code << 8) | self.next_byte()) & 0xFFFFFFFF
 
     def bit(self, context):
         if self.starved:
@@ -253,9 +259,18 @@ class RangeDecoder:
             self.range -= bound
             self.p[context] = p - (p >> 5)
             out = 1
-        while self.range < 2 ** 24:
-            self.range = (self.range << 8) & 0xFFFFFFFF
-            self.code = ((self.code << 8) | self.next_byte()) & 0xFFFFFFFF
+        self.normalise()
+        return out
+
+    def even(self):
+        if self.starved:
+            raise Starved()
+        self.range >>= 1
+        out = 0
+        if self.code >= self.range:
+            self.code -= self.range
+            out = 1
+        self.normalise()
         return out
 
 
@@ -289,38 +304,108 @@ def decode_stream(stream, W, H, levels, planes):
     significant), as far as the stream's bytes held determine them."""
     m, negative, lowest, first = [0] * (W * H), [False] * (W * H), [None] * (W * H), [0] * (W * H)
     bands = []
-    for x0, y0, x1, y1, kind in subbands(W, H, levels):
-        columns, rows = -(-(x1 - x0) // BLOCK), -(-(y1 - y0) // BLOCK)
-        bands.append((x0, y0, x1, y1, kind, columns, rows, [False] * (columns * rows)))
+    for i, (x0, y0, x1, y1, kind) in enumerate(subbands(W, H, levels)):
+        bands.append({"x0": x0, "y0": y0, "w": x1 - x0, "h": y1 - y0, "kind": kind,
+                      "parent": i - 3 if i >= 4 else None})
+    active = set()  # (band, t, p, q) of the active nodes
+
+    def count(band, t):  # nodes of level t across and down
+        side = 2 ** t
+        return -(-band["w"] // side), -(-band["h"] // side)
+
+    def exists(band, t, p, q):
+        across, down = count(band, t)
+        return 0 <= p < across and 0 <= q < down
+
+    def significant(bi, x, y):
+        return lowest[(bands[bi]["y0"] + y) * W + bands[bi]["x0"] + x] is not None
+
+    def coefficient_context(bi, x, y, fresh):
+        band = bands[bi]
+        s = 0
+        for yy in (y - 1, y, y + 1):
+            for xx in (x - 1, x, x + 1):
+                if (xx, yy) != (x, y) and 0 <= xx < band["w"] and 0 <= yy < band["h"] and significant(bi, xx, yy):
+                    s += 1
+        parent = 0
+        if band["parent"] is not None:
+            up = bands[band["parent"]]
+            parent = 1 if significant(band["parent"], min(x // 2, up["w"] - 1), min(y // 2, up["h"] - 1)) else 0
+        return 96 + 8 * (2 * band["kind"] + fresh) + 4 * parent + min(s, 3)
+
+    def node_context(bi, t, p, q, fresh):
+        band = bands[bi]
+        near = any(exists(band, t, pp, qq) and (bi, t, pp, qq) in active
+                   for pp, qq in ((p - 1, q), (p, q - 1), (p + 1, q), (p, q + 1)))
+        parent = 0
+        if band["parent"] is not None:
+            up = bands[band["parent"]]
+            if t == 1:
+                parent = significant(band["parent"], min(p, up["w"] - 1), min(q, up["h"] - 1))
+            else:
+                across, down = count(up, t - 1)
+                parent = (band["parent"], t - 1, min(p, across - 1), min(q, down - 1)) in active
+        return 8 * (3 * (t - 1) + band["kind"]) + (4 if parent else 0) + 2 * fresh + (1 if near else 0)
+
+    C, N, S = [], {t: [] for t in range(1, LEVELS + 1)}, []
+    for bi, band in enumerate(bands):
+        across, down = count(band, LEVELS)
+        N[LEVELS] += [(bi, p, q) for q in range(down) for p in range(across)]
     rc = RangeDecoder(stream)
+
+    def become_significant(bi, x, y, b):
+        i = (bands[bi]["y0"] + y) * W + bands[bi]["x0"] + x
+        sign = rc.even()  # read before anything changes: a sign beyond the bytes leaves it at 0
+        negative[i] = sign == 1
+        m[i], lowest[i], first[i] = 2 ** b, b, b
+        S.append(i)
+
+    def split(bi, t, p, q, b):
+        band = bands[bi]
+        children = [(2 * p + dx, 2 * q + dy) for dy in (0, 1) for dx in (0, 1)
+                    if (t > 1 and exists(band, t - 1, 2 * p + dx, 2 * q + dy)) or
+                    (t == 1 and 2 * p + dx < band["w"] and 2 * q + dy < band["h"])]
+        any_on = False
+        for k, (cp, cq) in enumerate(children):
+            inferred = not any_on and k == len(children) - 1
+            if t == 1:
+                if inferred or rc.bit(coefficient_context(bi, cp, cq, 1)):
+                    any_on = True
+                    become_significant(bi, cp, cq, b)
+                else:
+                    C.append((bi, cp, cq))
+            else:
+                if inferred or rc.bit(node_context(bi, t - 1, cp, cq, 1)):
+                    any_on = True
+                    active.add((bi, t - 1, cp, cq))
+                    split(bi, t - 1, cp, cq, b)
+                else:
+                    N[t - 1].append((bi, cp, cq))
+
     try:
         for b in range(planes - 1, -1, -1):
-            for x0, y0, x1, y1, kind, columns, rows, active in bands:
-                for by in range(rows):
-                    for bx in range(columns):
-                        if not active[by * columns + bx]:
-                            left = bx > 0 and active[by * columns + bx - 1]
-                            above = by > 0 and active[(by - 1) * columns + bx]
-                            if not rc.bit(12 + 2 * kind + (1 if left or above else 0)):
-                                continue
-                            active[by * columns + bx] = True
-                        for y in range(y0 + by * BLOCK, min(y0 + (by + 1) * BLOCK, y1)):
-                            for x in range(x0 + bx * BLOCK, min(x0 + (bx + 1) * BLOCK, x1)):
-                                i = y * W + x
-                                if lowest[i] is not None:
-                                    if rc.bit(19 if first[i] == b + 1 else 20):
-                                        m[i] |= 1 << b
-                                    lowest[i] = b
-                                    continue
-                                count = 0
-                                for yy in (y - 1, y, y + 1):
-                                    for xx in (x - 1, x, x + 1):
-                                        if (yy, xx) != (y, x) and y0 <= yy < y1 and x0 <= xx < x1 and \
-                                                lowest[yy * W + xx] is not None:
-                                            count += 1
-                                if rc.bit(4 * kind + min(count, 3)):
-                                    negative[i] = rc.bit(18) == 1
-                                    m[i], lowest[i], first[i] = 1 << b, b, b
+            before = len(S)
+            kept = []
+            for bi, x, y in C:
+                if rc.bit(coefficient_context(bi, x, y, 0)):
+                    become_significant(bi, x, y, b)
+                else:
+                    kept.append((bi, x, y))
+            C[:] = kept
+            for t in (1, 2, 0, 3, 4):  # 0: the refinement pass, between the sets of levels 2 and 3
+                if t == 0:
+                    for i in S[:before]:
+                        bit = rc.bit(144) if first[i] == b + 1 else rc.even()
+                        m[i] |= bit << b
+                        lowest[i] = b
+                    continue
+                entries, N[t] = N[t], []
+                for bi, p, q in entries:
+                    if rc.bit(node_context(bi, t, p, q, 0)):
+                        active.add((bi, t, p, q))
+                        split(bi, t, p, q, b)
+                    else:
+                        N[t].append((bi, p, q))
     except Starved:
         pass
     return m, negative, lowest

@@ -19,7 +19,6 @@ namespace pdeface::pdef::detail {
 //! What a prefix of a stream gave.
 struct DecodedPlanes {
   std::vector<double> coefficients; //!< reconstructed, in units of the step
-  std::size_t symbols = 0;          //!< binary decisions decoded
   std::size_t bytes_used = 0;       //!< of the stream (at most its size)
   bool complete = false;            //!< every plane decoded
   std::size_t lowest_plane = 0;     //!< the last plane reached (partly, unless complete)

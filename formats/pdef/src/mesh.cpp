@@ -93,11 +93,18 @@ Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution, std
   if (!surface) return std::move(surface).error();
   Result<pde::GridMesher> scan = scan_mesher(face, *surface, resolution, source);
   if (!scan) return std::move(scan).error();
-  Mesh mesh = scan->mesh(face.frame.scan_units);
-  if (has_offsets(face)) {
-    const std::vector<double> offsets = pde::resample(face.residual->field, scan->u_count(), scan->v_count());
-    pde::displace_grid(mesh.positions, mesh.normals, scan->u_count(), scan->v_count(), offsets,
-                       1.0 / face.frame.scale);
+  Mesh mesh;
+  if (has_offsets(face)) { // moved along the normals the mesher makes, then given the moved grid's
+    const pde::Displacement& field = face.residual->field;
+    std::vector<double> resampled;
+    std::span<const double> offsets = field.values; // the layer's own grid: its values as they are
+    if (field.width != scan->u_count() || field.height != scan->v_count()) {
+      resampled = pde::resample(field, scan->u_count(), scan->v_count());
+      offsets = resampled;
+    }
+    mesh = scan->displaced_mesh(offsets, 1.0 / face.frame.scale, face.frame.scan_units);
+  } else {
+    mesh = scan->mesh(face.frame.scan_units);
   }
   mesh.name = face.name;
   return mesh;

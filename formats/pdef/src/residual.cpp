@@ -34,9 +34,9 @@ std::size_t node_limit(std::size_t file_bytes) {
   return kFreeResidualNodes + kResidualNodesPerByte * file_bytes;
 }
 
-pde::Displacement reconstruct(const detail::DecodedPlanes& planes, std::size_t width, std::size_t height,
+pde::Displacement reconstruct(detail::DecodedPlanes planes, std::size_t width, std::size_t height,
                               std::size_t levels, double step_mm) {
-  pde::Displacement field{width, height, planes.coefficients};
+  pde::Displacement field{width, height, std::move(planes.coefficients)};
   for (double& v : field.values)
     v *= step_mm;
   detail::inverse_97(field.values, width, height, levels);
@@ -121,9 +121,10 @@ Result<std::string> with_residual(std::string_view curves_file, const CodedResid
 pde::Displacement decode_residual(const CodedResidual& layer, std::size_t stream_bytes) {
   const std::string_view stream =
       std::string_view(layer.stream).substr(0, std::min(stream_bytes, layer.stream.size()));
-  const detail::DecodedPlanes planes =
+  detail::DecodedPlanes planes =
       detail::decode_planes(stream, layer.width, layer.height, layer.levels, layer.planes);
-  return reconstruct(planes, layer.width, layer.height, layer.levels, layer.step_units * detail::kStepUnit);
+  return reconstruct(std::move(planes), layer.width, layer.height, layer.levels,
+                     layer.step_units * detail::kStepUnit);
 }
 
 namespace detail {
@@ -202,9 +203,9 @@ Result<Residual> read_residual(std::string_view bytes, std::size_t offset, std::
   out.header_bytes = stream_at - offset;
   out.stream_bytes = static_cast<std::size_t>(length);
   out.bytes_read = held;
-  const DecodedPlanes decoded = decode_planes(stream, width, height, levels, planes);
+  DecodedPlanes decoded = decode_planes(stream, width, height, levels, planes);
   out.planes_read = planes - decoded.lowest_plane;
-  out.field = reconstruct(decoded, width, height, levels, out.step_mm);
+  out.field = reconstruct(std::move(decoded), width, height, levels, out.step_mm);
   return out;
 }
 

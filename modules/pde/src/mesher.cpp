@@ -304,28 +304,31 @@ void GridMesher::rows(std::span<const RowBlock> blocks) const {
   }
   const detail::MesherKernels& k = *kernels_;
   k.products({coefficients_.data(), stride_, columns_, width, cosines_.data()}, pairs.data(), pairs.size());
-  // Normals: each row turned into planes once (a ring of three: the row, and the rows below and above).
+  for (const RowBlock& b : blocks)
+    if (!b.normals.empty()) normals_of(row, b.first, b.count, b.normals.data()->data());
+}
+
+void GridMesher::normals_of(std::span<double* const> row, std::size_t first, std::size_t count,
+                            float* out) const {
+  // Each row turned into planes once (a ring of three: the row, and the rows below and above).
+  const detail::MesherKernels& k = *kernels_;
   const std::size_t plane = (u_count_ + kMaxLanes - 1) / kMaxLanes * kMaxLanes;
-  std::vector<double> ring(std::size_t{9} * plane); // three rows of three planes
-  for (const RowBlock& b : blocks) {
-    if (b.normals.empty()) continue;
-    std::array<std::size_t, 3> held{v_count_, v_count_, v_count_}; // the row in each slot of the ring
-    const auto planes_of = [&](std::size_t r) {
-      double* slot = ring.data() + (r % 3) * 3 * plane;
-      if (held[r % 3] != r) {
-        k.planes(row[r], u_count_, plane, slot);
-        held[r % 3] = r;
-      }
-      return slot;
-    };
-    for (std::size_t r = b.first; r < b.first + b.count; ++r) {
-      const double* below = planes_of(r == 0 ? 0 : r - 1);
-      const double* above = planes_of(r + 1 == v_count_ ? r : r + 1);
-      const double* middle = planes_of(r);
-      if (reversed_) std::swap(below, above); // X_u × (−X_v): the mapped surface's side
-      k.normals(middle, below, above, u_count_, plane, normal_scale_,
-                b.normals.data()->data() + (r - b.first) * u_count_ * 3);
+  std::vector<double> ring(std::size_t{9} * plane);              // three rows of three planes
+  std::array<std::size_t, 3> held{v_count_, v_count_, v_count_}; // the row in each slot of the ring
+  const auto planes_of = [&](std::size_t r) {
+    double* slot = ring.data() + (r % 3) * 3 * plane;
+    if (held[r % 3] != r) {
+      k.planes(row[r], u_count_, plane, slot);
+      held[r % 3] = r;
     }
+    return slot;
+  };
+  for (std::size_t r = first; r < first + count; ++r) {
+    const double* below = planes_of(r == 0 ? 0 : r - 1);
+    const double* above = planes_of(r + 1 == v_count_ ? r : r + 1);
+    const double* middle = planes_of(r);
+    if (reversed_) std::swap(below, above); // X_u × (−X_v): the mapped surface's side
+    k.normals(middle, below, above, u_count_, plane, normal_scale_, out + (r - first) * u_count_ * 3);
   }
 }
 
@@ -353,6 +356,24 @@ void GridMesher::triangles(std::size_t first, std::size_t count, std::span<Trian
     for (std::size_t v = 0; v < values; ++v)
       row[v] = pattern[v] + offset;
   }
+}
+
+Mesh GridMesher::displaced_mesh(std::span<const double> offsets, double scale, Units units) const {
+  if (offsets.size() != vertex_count()) throw std::invalid_argument("pde: one offset per vertex");
+  Mesh mesh = this->mesh(units);
+  double* const p = mesh.positions.data()->data();
+  const float* const n = mesh.normals.data()->data();
+  for (std::size_t v = 0; v < offsets.size(); ++v) {
+    const double d = offsets[v] * scale;
+    p[3 * v] = p[3 * v] + d * static_cast<double>(n[3 * v]);
+    p[3 * v + 1] = p[3 * v + 1] + d * static_cast<double>(n[3 * v + 1]);
+    p[3 * v + 2] = p[3 * v + 2] + d * static_cast<double>(n[3 * v + 2]);
+  }
+  std::vector<double*> row(v_count_);
+  for (std::size_t r = 0; r < v_count_; ++r)
+    row[r] = p + r * 3 * u_count_;
+  normals_of(row, 0, v_count_, mesh.normals.data()->data());
+  return mesh;
 }
 
 Mesh GridMesher::mesh(Units units) const {

@@ -77,7 +77,8 @@ struct SurfaceMesh {
 //! The face's surface as a mesh in the scan's frame and units, on `resolution` (default about 1 mm
 //! spacing; with a residual layer its own grid): `scan_mesher(face, surface_of(face),
 //! resolution).mesh(face.frame.scan_units)`, then each vertex moved along its normal by the layer's offset
-//! there (`pde::displace_grid`; the layer's values at its nodes, bilinear between them), named after the
+//! there (`pde::GridMesher::displaced_mesh`; the layer's values at its nodes, bilinear between them, given
+//! the moved grid's normals), named after the
 //! face. Its scan mesh is `surface_mesh`'s to the bit. Errors: those of `surface_of` and `scan_mesher`.
 [[nodiscard]] Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution = std::nullopt,
                                    std::string_view source = {});

@@ -83,7 +83,18 @@ public:
   //! The whole mesh, in `units`.
   [[nodiscard]] Mesh mesh(Units units = Units::Unknown) const;
 
+  //! The whole mesh with every vertex moved along its normal by `offsets[vertex] · scale` (a `.pdef`
+  //! residual layer's offsets, `scale` turning them into the mesh's units), then given the moved grid's
+  //! normals, made as `mesh`'s are (central differences, one-sided at the borders, the same orientation).
+  //! \throw std::invalid_argument unless there is one offset per vertex
+  [[nodiscard]] Mesh displaced_mesh(std::span<const double> offsets, double scale,
+                                    Units units = Units::Unknown) const;
+
 private:
+  // The unit normals of grid rows [first, first + count) into `out` (3 floats a point), each row r's
+  // points at row[r] (3·u_count doubles; the rows beside them included).
+  void normals_of(std::span<double* const> row, std::size_t first, std::size_t count, float* out) const;
+
   const detail::MesherKernels* kernels_ = nullptr;
   std::size_t u_count_ = 0;
   std::size_t v_count_ = 0;
