@@ -260,13 +260,21 @@ Resolver files_beside(const std::filesystem::path& file, std::uint64_t max_bytes
   };
 }
 
+namespace {
+
+// `options`, with the files beside `path` as the resolver when it has none and follows references.
+ReadOptions resolving_beside(ReadOptions options, const std::filesystem::path& path) {
+  if (!options.resolver && options.companions)
+    options.resolver = files_beside(path, options.max_companion_bytes);
+  return options;
+}
+
+} // namespace
+
 Result<LoadedMesh> read_mesh(const std::filesystem::path& path, const ReadOptions& options, Notes* notes) {
   Result<std::string> bytes = read_file(path);
   if (!bytes) return std::move(bytes).error();
-  if (options.resolver || !options.companions) return read_mesh(*bytes, source_name(path), options, notes);
-  ReadOptions beside = options;
-  beside.resolver = files_beside(path, options.max_companion_bytes);
-  return read_mesh(*bytes, source_name(path), beside, notes);
+  return read_mesh(*bytes, source_name(path), resolving_beside(options, path), notes);
 }
 
 Result<std::vector<OutputFile>> encode_files(const Mesh& mesh, const std::filesystem::path& path,
@@ -482,9 +490,8 @@ Result<ConvertReport> convert(const std::filesystem::path& in, const std::filesy
   const bool residual = bytes->size() > 4 && static_cast<std::uint8_t>((*bytes)[4]) >= 3;
   if (*from == Format::Pdef && to == Format::Ply && !write_options.ascii && !residual)
     return stream_pdef_as_ply(*bytes, in, out, read_options);
-  ReadOptions read = read_options;
+  ReadOptions read = resolving_beside(read_options, in);
   read.format = *from;
-  if (!read.resolver && read.companions) read.resolver = files_beside(in, read.max_companion_bytes);
   Result<LoadedMesh> loaded = read_mesh(*bytes, source_name(in), read, notes);
   if (!loaded) return std::move(loaded).error();
   Result<std::size_t> written = write_mesh(loaded->mesh, out, write_options, notes);

@@ -273,7 +273,7 @@ Result<Mesh> read(std::string_view bytes, std::string_view source, Notes* notes)
   // Points that repeat a position, normal and colour differ in their texture coordinate only (a seam the
   // writer split): one vertex again, the texture coordinates per corner.
   std::size_t merged = 0;
-  Mesh mesh = weld_texcoord_seams(decoded->mesh, &merged);
+  Mesh mesh = weld_texcoord_seams(std::move(decoded->mesh), &merged);
   if (merged > 0 && notes)
     notes->push_back(
         fmt::format("{}: {} points on texture seams merged with their twins (texture coordinates "

@@ -186,7 +186,8 @@ Result<Encoded> encode(const Mesh& input, const WriteOptions& options, Notes* no
   // One TEX_COORD value per point: seam vertices split (same position, so the edgebreaker's connectivity,
   // which follows positions, is the same; the reader welds them again).
   std::size_t split = 0;
-  const Mesh mesh = with_vertex_texcoords(input, &split);
+  const Mesh split_mesh = input.has_corner_texcoords() ? with_vertex_texcoords(input, &split) : Mesh();
+  const Mesh& mesh = input.has_corner_texcoords() ? split_mesh : input;
   if (split > 0 && notes)
     notes->push_back(fmt::format("{} vertices on texture seams written once per texture coordinate", split));
   if (auto e = check_span<Vec3>(mesh.positions, "positions", mesh)) return std::move(*e);

@@ -411,7 +411,7 @@ private:
       // Vertices a writer split at texture seams (ours among them) joined again: one vertex, a texture
       // coordinate per corner, as the shape's connectivity is.
       std::size_t merged = 0;
-      mesh = weld_texcoord_seams(mesh, &merged);
+      mesh = weld_texcoord_seams(std::move(mesh), &merged);
       if (merged > 0)
         note(fmt::format(
             "{} vertices that repeat another's position, normal and colour merged with it (texture "

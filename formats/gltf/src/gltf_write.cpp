@@ -319,7 +319,7 @@ Result<std::string> write(const Mesh& mesh, const WriteOptions& options, Notes* 
   // One texture coordinate per vertex: seam vertices written once per coordinate (normals computed before,
   // so both copies shade alike). glTF's (0, 0) is the image's top left, ours its bottom left (OBJ's).
   std::size_t split = 0;
-  out = with_vertex_texcoords(out, &split);
+  out = with_vertex_texcoords(std::move(out), &split);
   if (split > 0 && notes)
     notes->push_back(fmt::format("{} vertices on texture seams written once per texture coordinate ({} in "
                                  "all): glTF holds one per vertex",

@@ -62,7 +62,8 @@ Result<std::string> write(const Mesh& input, const WriteOptions& options, Notes*
   if (Result<void> valid = check_writable(input); !valid) return std::move(valid).error();
   // One texture coordinate per vertex (s t): seam vertices written once per coordinate.
   std::size_t split = 0;
-  const Mesh mesh = with_vertex_texcoords(input, &split);
+  const Mesh split_mesh = input.has_corner_texcoords() ? with_vertex_texcoords(input, &split) : Mesh();
+  const Mesh& mesh = input.has_corner_texcoords() ? split_mesh : input;
   if (split > 0 && notes)
     notes->push_back(
         fmt::format("{} vertices on texture seams written once per texture coordinate: PLY's s t "

@@ -3,8 +3,11 @@
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
+#include <array>
 #include <cmath>
 #include <cstring>
+#include <span>
+#include <string_view>
 #include <type_traits>
 #include <unordered_map>
 
@@ -138,98 +141,105 @@ std::vector<Vec2f> corner_texcoords(const Mesh& mesh) {
 
 namespace {
 
-// The bytes of `value` appended to `key`: the maps below compare values bit for bit.
+// The bytes of `value` appended to `key` at `at`: the maps below compare values bit for bit.
 template <class T>
 requires std::is_arithmetic_v<T>
-void append_bits(std::string& key, T value) {
-  const auto old = key.size();
-  key.resize(old + sizeof(T));
-  std::memcpy(key.data() + old, &value, sizeof(T));
+void append_bits(std::span<char> key, std::size_t& at, T value) {
+  std::memcpy(key.data() + at, &value, sizeof(T));
+  at += sizeof(T);
 }
-template <class Derived> void append_bits(std::string& key, const Eigen::MatrixBase<Derived>& value) {
+template <class Derived>
+void append_bits(std::span<char> key, std::size_t& at, const Eigen::MatrixBase<Derived>& value) {
   for (Eigen::Index i = 0; i < value.size(); ++i)
-    append_bits(key, value(i));
+    append_bits(key, at, value(i));
 }
+
+// A vertex's position, normal and colour (or a vertex index and a texture coordinate) bit for bit, the
+// absent ones zero: a fixed-size key, so that filling a map allocates no string per vertex.
+using Key = std::array<char, sizeof(Vec3) + sizeof(Vec3f) + sizeof(Vec4f)>;
+struct KeyHash {
+  std::size_t operator()(const Key& k) const noexcept {
+    return std::hash<std::string_view>{}(std::string_view(k.data(), k.size()));
+  }
+};
 
 } // namespace
 
-Mesh with_vertex_texcoords(const Mesh& mesh, std::size_t* split) {
+Mesh with_vertex_texcoords(Mesh mesh, std::size_t* split) {
   if (split) *split = 0;
   if (!mesh.has_corner_texcoords()) return mesh;
-  Mesh out = mesh;
-  out.texcoord_triangles.clear();
   const std::size_t n = mesh.positions.size();
   std::vector<bool> seen(n, false);
   std::vector<Vec2f> uv(n, Vec2f::Zero());
   // (vertex, coordinate's bits) → the vertex's copy with that coordinate.
-  std::unordered_map<std::string, std::uint32_t> copies;
-  std::string key;
+  std::unordered_map<Key, std::uint32_t, KeyHash> copies;
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     for (std::size_t k = 0; k < 3; ++k) {
-      std::uint32_t& v = out.triangles[f][k];
-      const Vec2f& t = mesh.texcoords[mesh.texcoord_triangles[f][k]];
+      std::uint32_t& v = mesh.triangles[f][k];
+      const Vec2f t = mesh.texcoords[mesh.texcoord_triangles[f][k]];
       if (!seen[v]) {
         seen[v] = true;
         uv[v] = t;
         continue;
       }
       if (uv[v] == t) continue;
-      key.clear();
-      append_bits(key, v);
-      append_bits(key, t);
-      const auto [it, added] = copies.try_emplace(key, static_cast<std::uint32_t>(out.positions.size()));
+      Key key{};
+      std::size_t at = 0;
+      append_bits(key, at, v);
+      append_bits(key, at, t);
+      const auto [it, added] = copies.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
       if (added) {
-        out.positions.push_back(mesh.positions[v]);
-        if (mesh.has_normals()) out.normals.push_back(mesh.normals[v]);
-        if (mesh.has_colors()) out.colors.push_back(mesh.colors[v]);
+        mesh.positions.push_back(Vec3(mesh.positions[v]));
+        if (mesh.has_normals()) mesh.normals.push_back(Vec3f(mesh.normals[v]));
+        if (mesh.has_colors()) mesh.colors.push_back(Vec4f(mesh.colors[v]));
         uv.push_back(t);
       }
       v = it->second;
     }
   }
-  out.texcoords = std::move(uv);
-  if (split) *split = out.positions.size() - n;
-  return out;
+  mesh.texcoords = std::move(uv);
+  mesh.texcoord_triangles.clear();
+  if (split) *split = mesh.positions.size() - n;
+  return mesh;
 }
 
-Mesh weld_texcoord_seams(const Mesh& mesh, std::size_t* merged) {
+Mesh weld_texcoord_seams(Mesh mesh, std::size_t* merged) {
   if (merged) *merged = 0;
   if (!mesh.has_texcoords() || mesh.has_corner_texcoords() || mesh.is_point_cloud()) return mesh;
   const std::size_t n = mesh.positions.size();
-  std::unordered_map<std::string, std::uint32_t> first;
+  std::unordered_map<Key, std::uint32_t, KeyHash> first;
   first.reserve(n);
   std::vector<std::uint32_t> index(n);
   std::uint32_t kept = 0;
-  std::string key;
   for (std::size_t v = 0; v < n; ++v) {
-    key.clear();
-    append_bits(key, mesh.positions[v]);
-    if (mesh.has_normals()) append_bits(key, mesh.normals[v]);
-    if (mesh.has_colors()) append_bits(key, mesh.colors[v]);
+    Key key{};
+    std::size_t at = 0;
+    append_bits(key, at, mesh.positions[v]);
+    if (mesh.has_normals()) append_bits(key, at, mesh.normals[v]);
+    if (mesh.has_colors()) append_bits(key, at, mesh.colors[v]);
     const auto [it, added] = first.try_emplace(key, kept);
     index[v] = it->second;
     if (added) ++kept;
   }
   if (kept == n) return mesh;
-  Mesh out;
-  out.units = mesh.units;
-  out.name = mesh.name;
-  out.material = mesh.material;
-  out.positions.resize(kept);
-  if (mesh.has_normals()) out.normals.resize(kept);
-  if (mesh.has_colors()) out.colors.resize(kept);
+  // The first vertex of each kind moves down to its new index (never above its old one); the texture
+  // coordinates stay as they were, indexed per corner by the old triangles.
+  std::uint32_t next = 0;
   for (std::size_t v = 0; v < n; ++v) {
-    out.positions[index[v]] = mesh.positions[v];
-    if (mesh.has_normals()) out.normals[index[v]] = mesh.normals[v];
-    if (mesh.has_colors()) out.colors[index[v]] = mesh.colors[v];
+    if (index[v] != next) continue; // a repeat: its kind's first came before it
+    mesh.positions[next] = mesh.positions[v];
+    if (mesh.has_normals()) mesh.normals[next] = mesh.normals[v];
+    if (mesh.has_colors()) mesh.colors[next] = mesh.colors[v];
+    ++next;
   }
-  out.texcoords = mesh.texcoords;
-  out.texcoord_triangles = mesh.triangles;
-  out.triangles.reserve(mesh.triangles.size());
-  for (const Triangle& t : mesh.triangles)
-    out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+  mesh.positions.resize(kept);
+  if (mesh.has_normals()) mesh.normals.resize(kept);
+  if (mesh.has_colors()) mesh.colors.resize(kept);
+  mesh.texcoord_triangles = mesh.triangles;
+  for (Triangle& t : mesh.triangles)
+    t = {index[t[0]], index[t[1]], index[t[2]]};
   if (merged) *merged = n - kept;
-  return out;
+  return mesh;
 }
 
 } // namespace pdeface

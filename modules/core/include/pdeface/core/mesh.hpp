@@ -132,15 +132,15 @@ struct PointCloud {
 //! corners give it different coordinates is split into one copy per coordinate (same position, normal
 //! and colour); the others keep their index, copies come after them. Per-vertex texture coordinates and
 //! meshes without any are returned unchanged; vertices on no triangle get (0, 0). `split`, when given,
-//! receives the number of vertices added.
+//! receives the number of vertices added. Taken by value: a mesh moved in is changed in place.
 //! \pre validate(mesh)
-[[nodiscard]] Mesh with_vertex_texcoords(const Mesh& mesh, std::size_t* split = nullptr);
+[[nodiscard]] Mesh with_vertex_texcoords(Mesh mesh, std::size_t* split = nullptr);
 
 //! The inverse, for what a format split: vertices with the same position, normal and colour (bit for bit)
 //! merged into one, the texture coordinates becoming per corner. Meshes without texture coordinates and
 //! meshes without such duplicates are returned unchanged. `merged`, when given, receives the number of
-//! vertices removed.
+//! vertices removed. Taken by value: a mesh moved in and returned unchanged is not copied.
 //! \pre validate(mesh)
-[[nodiscard]] Mesh weld_texcoord_seams(const Mesh& mesh, std::size_t* merged = nullptr);
+[[nodiscard]] Mesh weld_texcoord_seams(Mesh mesh, std::size_t* merged = nullptr);
 
 } // namespace pdeface
