@@ -198,9 +198,10 @@ TEST(ObjRead, CorruptOrHugeImageIsAnErrorNamingIt) {
   for (const auto& [image, code] :
        {std::pair{bomb, ErrorCode::CountTooLarge},
         std::pair{std::string("\xFF\xD8\xFF\xE0\x00\x10JFIF"), ErrorCode::Truncated}}) {
+    const std::string& bytes = image; // clang 14 does not capture structured bindings
     const Resolver resolve = [&](std::string_view name) -> Result<std::string> {
       if (name == "m.mtl") return std::string("newmtl a\nmap_Kd face.png\n");
-      return image;
+      return bytes;
     };
     const Error e = error_of(
         obj::read("mtllib m.mtl\n"s + std::string(kTriangle) + "f 1 2 3\n", "t.obj", nullptr, resolve));
