@@ -3,7 +3,7 @@
 # build-san/ (address and undefined-behaviour sanitizers; shared with scripts/sanitize.sh) and runs each for
 # SECONDS (default 25), seeded with tests/data/ and with those fixtures converted to every format. A target's
 # corpus grows in build-san/corpus/<target>/ across runs; crashes, leaks, timeouts (> 10 s for one input; 30
-# for Draco and glTF, 60 for the whole path) and inputs that need more than 2 GB are written to
+# for Draco, glTF and .pdef, 60 for the whole path) and inputs that need more than 2 GB are written to
 # build-san/findings/. The exit status is non-zero if any target found something. TARGETS (default: all)
 # limits the run, e.g.
 #   scripts/fuzz.sh 600 obj_fuzz ply_fuzz
@@ -41,8 +41,10 @@ for target in "${targets[@]}"; do
   dirs=()
   for d in ${corpus_of[$target]}; do dirs+=("$seeds/$d"); done
   # Seconds one input may take: the whole path runs landmark detection; libdraco (Draco files, and Draco
-  # data in glTF) has known slow paths, bounded but not fail-fast (docs/robustness.md).
-  timeout=10; [[ $target == path_fuzz ]] && timeout=60; [[ $target == draco_fuzz || $target == gltf_fuzz ]] && timeout=30
+  # data in glTF) has known slow paths, bounded but not fail-fast; a .pdef input is decoded and encoded up
+  # to three times, each encoding's surface checks bounded (about 3 s under the sanitizers at most on a
+  # face of 4096 samples; docs/robustness.md).
+  timeout=10; [[ $target == path_fuzz ]] && timeout=60; [[ $target == draco_fuzz || $target == gltf_fuzz || $target == pdef_fuzz ]] && timeout=30
   dict=(); [[ -f "$root/fuzz/${target%_fuzz}.dict" ]] && dict=(-dict="$root/fuzz/${target%_fuzz}.dict")
   echo "pdeface: fuzzing $target for $seconds s" >&2
   if ! "$build/fuzz/$target" "$corpus" "${dirs[@]}" "${dict[@]}" -max_total_time="$seconds" -max_len=65536 \

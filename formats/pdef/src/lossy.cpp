@@ -16,6 +16,7 @@
 #include <functional>
 #include <numbers>
 #include <numeric>
+#include <stdexcept>
 
 namespace pdeface::pdef::detail {
 namespace {
@@ -30,6 +31,26 @@ constexpr double kMaxMargin = 0.01;
 // The surface is accepted within this share of the maximum error: the grid's spacing (0.1-0.2 mm) may
 // miss the top of a peak of the distance (about 1 mm wide) by up to ~1 %.
 constexpr double kCheckShare = 0.97;
+// What the checks of one encoding may cost, in multiply-adds: an evaluation of the surface on nu × nv points
+// sums every cosine column (K with the remainder, N + 1 without) at every point, after a table of those
+// cosines at every v (each cosine about as costly as 64 multiply-adds). A face at 60 % (28 curves of 180
+// samples: 217 × 1433 points on the check's grid) costs 72 M per evaluation, eight evaluations per grid
+// tried (~40 ms) and at most about seven grids; the budget allows 15 such. A larger document (the format
+// allows 1024 curves of 4097 samples) is checked on fewer points per interval, down to one, and refused
+// when even that is beyond the budget, so that encoding any face ends within about a second.
+constexpr double kGridBudget = double(1 << 27);
+constexpr double kPlanBudget = 8.0 * double(1 << 30);
+constexpr double kCosineCost = 64;
+// The first grids that fail are followed by ones finer in proportion to how far they failed; after this
+// many failures (real faces need at most 5), each is at least twice as fine.
+constexpr std::size_t kGentleTightenings = 6;
+// At most this many points are projected onto the other surface in one search, and at most this many
+// cosine columns' worth of them (a projection evaluates the surface 15 times at one point, each summing
+// every column); the rest count by their estimate's upper bound (a flat hostile face, whose estimates are
+// all alike, would have every point projected). Real faces (the 24 shared scans at 5-60 %) project at most
+// 668 points (at 5 %, 15 columns) and 14.5 k columns' worth (242 points at 20 %).
+constexpr std::size_t kMaxProjections = 4096;
+constexpr std::size_t kProjectionColumns = std::size_t{1} << 15;
 
 double value(std::int64_t q, std::uint32_t units) { return static_cast<double>(q * units) * kStepUnit; }
 
@@ -228,10 +249,20 @@ double largest(const Pairs& p, const pde::Surface& to, double limit) {
   for (std::size_t i = 0; i < e.size(); ++i)
     if (i != top && e[i] + m[i] > worst) order.push_back(i);
   std::ranges::sort(order, [&](std::size_t l, std::size_t r) { return e[l] > e[r]; });
-  for (const std::size_t i : order) {
+  const std::size_t columns = to.has_remainder() ? to.sample_count() : to.modes() + 1;
+  const std::size_t most = std::clamp<std::size_t>(kProjectionColumns / columns, 16, kMaxProjections);
+  std::size_t projected = 1;
+  for (std::size_t at = 0; at < order.size(); ++at) {
+    const std::size_t i = order[at];
     if (e[i] + m[i] <= worst) continue;
     if (e[i] + kMaxMargin <= worst) break;
+    if (projected == most) { // the rest by their upper bounds
+      for (; at < order.size(); ++at)
+        worst = std::max(worst, e[order[at]] + m[order[at]]);
+      break;
+    }
     worst = std::max(worst, distance(i));
+    ++projected;
     if (worst > limit) break;
   }
   return worst;
@@ -239,18 +270,31 @@ double largest(const Pairs& p, const pde::Surface& to, double limit) {
 
 } // namespace
 
-double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit) {
-  // A coarse grid first: 8 points per curve interval across and per sample interval along.
+double check_cost(std::size_t curves, std::size_t samples, std::size_t columns, int density) {
+  const double nu = static_cast<double>(curves - 1) * density + 1;
+  const double nv = static_cast<double>(samples - 1) * density + 1;
+  return nv * (nu + kCosineCost) * static_cast<double>(columns);
+}
+
+int check_density(std::size_t curves, std::size_t samples, std::size_t columns) {
+  for (int d = kCoarse; d >= 1; --d)
+    if (check_cost(curves, samples, columns, d) <= kGridBudget) return d;
+  return 0;
+}
+
+double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit, int density) {
+  if (density < 1) throw std::invalid_argument("pdef::detail::surface_error: a density of at least 1");
+  // A coarse grid first: `density` points per curve interval across and per sample interval along.
   const std::vector<double>& knots = reference.knots();
   std::vector<double> us, vs;
   for (std::size_t j = 0; j + 1 < knots.size(); ++j)
-    for (int i = 0; i < kCoarse; ++i)
-      us.push_back(knots[j] + (knots[j + 1] - knots[j]) * i / kCoarse);
+    for (int i = 0; i < density; ++i)
+      us.push_back(knots[j] + (knots[j + 1] - knots[j]) * i / density);
   us.push_back(reference.u_max());
   const std::size_t intervals = reference.sample_count() - 1;
   for (std::size_t k = 0; k < intervals; ++k)
-    for (int i = 0; i < kCoarse; ++i)
-      vs.push_back(std::numbers::pi * (static_cast<double>(k) + static_cast<double>(i) / kCoarse) /
+    for (int i = 0; i < density; ++i)
+      vs.push_back(std::numbers::pi * (static_cast<double>(k) + static_cast<double>(i) / density) /
                    static_cast<double>(intervals));
   vs.push_back(std::numbers::pi);
   const auto grid_border = [&](std::size_t i, std::size_t k) {
@@ -340,6 +384,16 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     }
   }
 
+  const std::size_t modes = face.pde.modes.value_or(face.sample_count() - 1);
+  const std::size_t columns = face.pde.remainder ? face.sample_count() : modes + 1;
+  const int density = check_density(face.curve_count(), face.sample_count(), columns);
+  if (density == 0)
+    return make_error(ErrorCode::InvalidArgument,
+                      fmt::format("pdef: {} curves of {} samples: more than a lossy encoding can check the "
+                                  "surface of; encode it lossless",
+                                  face.curve_count(), face.sample_count()));
+  const double cost = check_cost(face.curve_count(), face.sample_count(), columns, density);
+  double spent = 0;
   Result<pde::Surface> reference = pde::Surface::build(face.curves, face.pde);
   if (!reference)
     return make_error(ErrorCode::InvalidArgument,
@@ -370,7 +424,8 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     }
     Result<pde::Surface> surface = pde::Surface::build(decoded.curves, decoded.pde);
     if (!surface) return c;
-    c.surface = surface_error(*reference, *surface, limit);
+    spent += 8 * cost;
+    c.surface = surface_error(*reference, *surface, limit, density);
     c.passed = c.surface <= limit;
     if (!c.passed) c.ratio = limit / c.surface; // c.surface is where the search stopped: at most the error
     return c;
@@ -378,7 +433,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
   std::uint32_t units = first_units, failed = 0, best = 0;
   Checked passed;
   int bisections = 0;
-  for (std::size_t attempt = 0; units >= 1 && attempt < 200; ++attempt) {
+  for (std::size_t attempt = 0; units >= 1 && attempt < 200 && spent + 8 * cost <= kPlanBudget; ++attempt) {
     Checked c = check(units);
     const double ratio = c.ratio;
     if (c.passed) {
@@ -389,7 +444,8 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
       failed = units;
     }
     if (best == 0) {
-      units = std::min(units - 1, static_cast<std::uint32_t>(units * std::min(0.98, 0.995 * ratio)));
+      const double finer = plan.tightenings > kGentleTightenings ? 0.5 : 0.98;
+      units = std::min(units - 1, static_cast<std::uint32_t>(units * std::min(finer, 0.995 * ratio)));
       continue;
     }
     if (failed == 0 || bisections == 2 || failed - best <= std::max<std::uint32_t>(1, best / 100)) break;
@@ -404,8 +460,10 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     plan.max_surface_error = passed.surface + frame_part;
     return plan;
   }
-  return make_error(ErrorCode::InvalidArgument,
-                    fmt::format("pdef: no grid keeps the surface within {} mm of the original", e));
+  return make_error(
+      ErrorCode::InvalidArgument,
+      fmt::format("pdef: no grid keeps the surface within {} mm of the original{}", e,
+                  spent + 8 * cost > kPlanBudget ? " (within the checks one encoding may make)" : ""));
 }
 
 } // namespace pdeface::pdef::detail

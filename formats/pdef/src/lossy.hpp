@@ -25,17 +25,26 @@ struct LossyPlan {
 //! The face's planes and curves from their values on `grid` (every sample of curve j at x = its plane).
 void dequantise(const Quantised& q, const Grid& grid, Face& face);
 
-//! The coarsest grid (steps 0.98^i of the first that keeps every sample within the maximum error) on which
-//! the decoded samples and the decoded surface stay within `options.max_error_mm` of the face's
-//! (`surface_error`); a face decoded from a lossy file keeps its own grid when that is fine enough.
-//! Errors: `InvalidArgument` when the surface cannot be built or no grid fits.
+//! The coarsest grid (steps 0.98^i of the first that keeps every sample within the maximum error, halving
+//! after a few failures) on which the decoded samples and the decoded surface stay within
+//! `options.max_error_mm` of the face's (`surface_error`); a face decoded from a lossy file keeps its own
+//! grid when that is fine enough. The checks are bounded in work whatever the document's size.
+//! Errors: `InvalidArgument` when the surface cannot be built, no grid fits, or the document is too large
+//! to check.
 [[nodiscard]] Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options);
 
-//! The Hausdorff distance (mm) between the surfaces `reference` and `decoded`: both evaluated on a grid of 32
-//! points per curve interval across and 16 per sample interval along (0.1-0.2 mm apart on a face: the
-//! distance between two such surfaces has peaks about 1 mm wide where they bend sharply), each point's
-//! distance to the other surface estimated by its tangent plane, and the largest projected onto it (damped
-//! Gauss-Newton from the same (u, v)), both ways. The search stops as soon as it exceeds `limit`.
-[[nodiscard]] double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit);
+//! The Hausdorff distance (mm) between the surfaces `reference` and `decoded`: both evaluated on a grid of
+//! `density` points per curve interval across and per sample interval along (8 on a face: 0.2-0.5 mm
+//! apart; the distance between two such surfaces has peaks about 1 mm wide where they bend sharply, so the
+//! cells around the highest points are searched again 4 times finer), each point's distance to the other
+//! surface estimated by its tangent plane, and the largest projected onto it (damped Gauss-Newton from the
+//! same (u, v)), both ways. The search stops as soon as it exceeds `limit`.
+[[nodiscard]] double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit,
+                                   int density);
+
+//! The density `plan_lossy` checks a face of that size with: 8, or fewer for documents so large that the
+//! checks would exceed their budget (`columns`: the cosines each point sums); 0 when even one point per
+//! interval would.
+[[nodiscard]] int check_density(std::size_t curves, std::size_t samples, std::size_t columns);
 
 } // namespace pdeface::pdef::detail

@@ -610,13 +610,29 @@ std::string section_name(std::uint8_t tag) {
 
 // ---------------------------------------------------------------------------------------------------------
 
+// A file may describe at most `sample_limit` of its length in samples (docs/pdef-format.md, "Limits"): one
+// whose curves code to less (a thousand samples of one straight line) is refused, never written.
+std::optional<Error> too_regular(const Face& face, std::size_t file_bytes) {
+  const std::size_t limit = sample_limit(file_bytes);
+  if (face.curve_count() * face.sample_count() <= limit) return std::nullopt;
+  return invalid(
+      fmt::format("{} samples in {} bytes: more than a file of that size may hold ({}); the curves "
+                  "are too regular to store",
+                  face.curve_count() * face.sample_count(), file_bytes, limit));
+}
+
 Result<Encoded> encode(const Face& face, const EncodeOptions& options) {
   if (std::optional<Error> e = check_face(face, options)) return *e;
-  if (options.lossless) return Encoded{write_file(face, nullptr, {}, true), 0, 0, 0, 0};
+  if (options.lossless) {
+    Encoded out{write_file(face, nullptr, {}, true), 0, 0, 0, 0};
+    if (std::optional<Error> e = too_regular(face, out.bytes.size())) return *e;
+    return out;
+  }
   Result<detail::LossyPlan> plan = detail::plan_lossy(face, options);
   if (!plan) return std::move(plan).error();
   Encoded out;
   out.bytes = write_file(face, &plan->quantised, plan->grid, plan->frame64);
+  if (std::optional<Error> e = too_regular(face, out.bytes.size())) return *e;
   // The file must decode to exactly the samples the plan checked (a cheap guard against a writer bug).
   Face expected;
   detail::dequantise(plan->quantised, plan->grid, expected);
@@ -628,12 +644,6 @@ Result<Encoded> encode(const Face& face, const EncodeOptions& options) {
   out.max_sample_error = plan->max_sample_error;
   out.max_surface_error = plan->max_surface_error;
   out.tightenings = plan->tightenings;
-  const std::size_t limit = sample_limit(out.bytes.size());
-  if (face.curve_count() * face.sample_count() > limit)
-    return invalid(
-        fmt::format("{} samples in {} bytes: more than a file of that size may hold ({}); the curves "
-                    "are too regular to store",
-                    face.curve_count() * face.sample_count(), out.bytes.size(), limit));
   return out;
 }
 

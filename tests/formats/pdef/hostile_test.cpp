@@ -10,7 +10,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fmt/format.h>
+
 #include <random>
+#include <utility>
 
 namespace pdeface::pdef {
 namespace {
@@ -337,6 +340,55 @@ TEST(PdefHostile, HeightsTheEncoderNeverWritesAreEncodedAgainWithinTheError) {
     EXPECT_LE((back->curves.samples[j] - face->curves.samples[j]).rowwise().norm().maxCoeff(), error)
         << "curve " << j;
   }
+}
+
+// Every curve the same straight line, `curves` × `samples`: it codes to almost nothing.
+Face flat_face(std::size_t curves, std::size_t samples) {
+  Face face = synthetic_face(curves, 4);
+  for (std::size_t j = 0; j < curves; ++j) {
+    pde::Curve c(static_cast<Eigen::Index>(samples), 3);
+    for (std::size_t k = 0; k < samples; ++k)
+      c.row(static_cast<Eigen::Index>(k)) << face.planes[j], 0.1 * static_cast<double>(k), 0.0;
+    face.curves.samples[j] = c;
+    face.filled[j].assign(samples, false);
+  }
+  face.pde.modes = 3;
+  return face;
+}
+
+// A file may describe at most 4096 + 256 × its length in samples: a face whose curves code to less is
+// refused, never written as a file its own decoder refuses (encode threw std::logic_error on it).
+TEST(PdefHostile, AFaceTooRegularForItsFileIsRefusedNotWritten) {
+  const Result<Encoded> encoded = encode(flat_face(200, 500));
+  ASSERT_FALSE(encoded);
+  EXPECT_EQ(encoded.error().code, ErrorCode::InvalidArgument);
+  EXPECT_NE(encoded.error().message.find("too regular to store"), std::string::npos)
+      << encoded.error().message;
+}
+
+// Whatever a face's size, encoding it either refuses it or writes a file that decodes to it; the lossy
+// checks are bounded in work (a flat face of 16 × 300 samples took 1.7 s and one of 4 × 4097 samples 107 s
+// before): a document too large to check is refused lossy, and kept lossless.
+TEST(PdefHostile, LargeDocumentsAreEncodedWithinBoundedChecksOrRefused) {
+  for (const auto& [curves, samples] : {std::pair<std::size_t, std::size_t>{16, 300}, {4, 4097}}) {
+    const Face face = flat_face(curves, samples);
+    for (const bool lossless : {false, true}) {
+      const Result<Encoded> encoded = encode(face, {.lossless = lossless});
+      const std::string what = fmt::format("{} × {} {}", curves, samples, lossless ? "lossless" : "lossy");
+      if (!encoded) {
+        EXPECT_FALSE(lossless) << what << ": " << encoded.error().to_string();
+        EXPECT_EQ(encoded.error().code, ErrorCode::InvalidArgument) << what;
+        continue;
+      }
+      const Result<Face> back = decode(encoded->bytes, "again");
+      ASSERT_TRUE(back.ok()) << what << ": " << back.error().to_string();
+      EXPECT_EQ(back->sample_count(), samples) << what;
+    }
+  }
+  const Result<Encoded> refused = encode(flat_face(4, 4097));
+  ASSERT_FALSE(refused);
+  EXPECT_NE(refused.error().message.find("more than a lossy encoding can check"), std::string::npos)
+      << refused.error().message;
 }
 
 } // namespace
