@@ -6,7 +6,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libopenmesh-dev libtinygltf-dev libdraco-dev draco
   libfast-float-dev libstb-dev nlohmann-json3-dev libnanoflann-dev
-  libmeshoptimizer-dev zlib1g-dev libzstd-dev libutfcpp-dev
+  libmeshoptimizer-dev zlib1g-dev libzstd-dev libutfcpp-dev libturbojpeg0-dev
   libcli11-dev libfmt-dev libgtest-dev libgmock-dev libbenchmark-dev
   # The Python module (python/): pybind11, numpy; its tests and Dask batch: pytest, Dask distributed.
   python3-dev pybind11-dev python3-numpy python3-pytest python3-dask python3-distributed
@@ -14,6 +14,10 @@ packages=(
 # The tests also run the Khronos glTF validator on node (from Debian unless node is already there).
 if [[ "${1:-}" == "--test" ]] && ! { command -v node && command -v npm; } >/dev/null; then
   packages+=(nodejs npm)
+fi
+# ... and show GLBs in three.js in headless Chromium (tools/gltf_viewer: a face shows its photo).
+if [[ "${1:-}" == "--test" ]]; then
+  packages+=(chromium)
 fi
 
 # scripts/fuzz.sh: clang and its runtime libraries (libFuzzer, sanitizers).

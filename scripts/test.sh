@@ -9,6 +9,11 @@ if command -v npm >/dev/null && [[ ! -d "$root/build/tools/node_modules/gltf-val
   npm install --silent --no-audit --no-fund --prefix "$root/build/tools" gltf-validator >/dev/null 2>&1 ||
     echo "pdeface: could not install gltf-validator; the validator tests will be skipped" >&2
 fi
+# three.js and playwright-core for the viewer tests (tools/gltf_viewer; Debian's chromium, no download).
+if command -v npm >/dev/null && [[ ! -d "$root/tools/gltf_viewer/node_modules/three" ]]; then
+  npm install --silent --no-audit --no-fund --prefix "$root/tools/gltf_viewer" >/dev/null 2>&1 ||
+    echo "pdeface: could not install the glTF viewer's packages; the viewer tests will be skipped" >&2
+fi
 "$root/scripts/build.sh"
 cd "$root/build"
 ctest --output-on-failure --parallel "$(nproc)" --timeout 300

@@ -1,5 +1,6 @@
 #include "pdeface/pipeline/encode.hpp"
 #include "encode_residual.hpp"
+#include "encode_texture.hpp"
 
 #include "pdeface/core/text.hpp"
 #include "pdeface/pdef/mesh.hpp"
@@ -48,6 +49,13 @@ Result<EncodeOutcome> encode_sliced(const CanonicalScan& canonical, align::Align
     for (std::size_t i = 0; i < align::kLandmarkCount; ++i)
       if (const std::optional<Vec3>& p = canonical.landmarks.points[i])
         out.face.landmarks.push_back({std::string(align::name(static_cast<align::Landmark>(i))), *p});
+  if (request.texture.wanted) {
+    Result<TexturedFace> textured =
+        make_texture(canonical.mesh, sliced.surface, request.texture, request.source);
+    if (!textured) return named(std::move(textured).error());
+    out.face.texture = std::move(textured->texture);
+    out.texture = textured->outcome;
+  }
   Result<pdef::Encoded> encoded = pdef::encode(out.face, request.encoding);
   if (!encoded) return named(std::move(encoded).error());
   out.encoded = *std::move(encoded);

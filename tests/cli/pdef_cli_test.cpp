@@ -2,6 +2,7 @@
 
 #include "cli_fixture.hpp"
 
+#include "gltf_validator.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface_test.hpp"
 
@@ -131,6 +132,86 @@ TEST_F(PdefCli, WhatIsNotAFaceOrNotAFileIsRefused) {
     EXPECT_EQ(lines(r.err), 1U) << r.err;
   }
   EXPECT_EQ(files(), before);
+}
+
+} // namespace
+} // namespace pdeface::test
+
+namespace pdeface::test {
+namespace {
+
+// The texture layer (encode --texture): the sample face's vertex colours over the face as a JPEG section,
+// shown by `info`, decoded into a textured mesh that a GLB carries (the image embedded) and the validator
+// passes; a scan without colour is refused and nothing is written.
+TEST_F(PdefCli, TextureLayerFromVertexColours) {
+  const Outcome e = run({"encode", path("face.ply"), "-o", path("t.pdef"), "--texture", "--texel", "1"});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(e.out.find("texture layer: "), std::string::npos) << e.out;
+  EXPECT_NE(e.out.find("from the scan's vertex colours"), std::string::npos) << e.out;
+  const Outcome i = run({"info", "--json", path("t.pdef")});
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  const nlohmann::json info = nlohmann::json::parse(i.out);
+  bool listed = false;
+  for (const auto& s : info[0]["pdef"]["sections"])
+    listed = listed || s["name"] == "texture";
+  EXPECT_TRUE(listed) << i.out;
+  const Outcome d = run({"decode", path("t.pdef"), "-o", path("t.glb")});
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const Result<formats::LoadedMesh> glb = formats::read_mesh(work_ / "t.glb");
+  ASSERT_TRUE(glb) << glb.error().to_string();
+  ASSERT_TRUE(glb->mesh.material && glb->mesh.material->base_color_image);
+  EXPECT_EQ(glb->mesh.material->base_color_image->mime_type, "image/jpeg");
+  EXPECT_EQ(glb->mesh.texcoords.size(), glb->mesh.vertex_count());
+  if (const auto node = find_node(); node)
+    if (const auto validator = find_validator(); validator)
+      expect_valid_gltf(*node, *validator, work_ / "t.glb");
+
+  // No colour: refused, no file.
+  ASSERT_EQ(run({"convert", path("face.ply"), path("plain.stl")}).exit_code, 0);
+  const Outcome plain = run({"encode", path("plain.stl"), "-o", path("plain.pdef"), "--texture"});
+  EXPECT_EQ(plain.exit_code, 1) << plain.err;
+  EXPECT_NE(plain.err.find("no colour for a texture layer"), std::string::npos) << plain.err;
+  EXPECT_FALSE(std::filesystem::exists(work_ / "plain.pdef"));
+  EXPECT_NE(run({"encode", path("face.ply"), "-o", path("x.pdef"), "--texel", "1"}).exit_code, 0)
+      << "--texel needs --texture";
+}
+
+} // namespace
+} // namespace pdeface::test
+
+namespace pdeface::test {
+namespace {
+
+// james.obj's photograph through the texture layer: the decoded GLB passes the validator and, in three.js
+// in headless Chromium (tools/gltf_viewer), shows a skin-coloured face; the file is 10-40 KB.
+TEST_F(PdefCli, JamesTextureLayerShowsHisPhotoInAViewer) {
+  PDEFACE_FACE_OR_SKIP(james, "james.obj");
+  const Outcome e = run({"encode", james.string(), "-o", path("james.pdef"), "--texture"});
+  ASSERT_EQ(e.exit_code, 0) << e.err;
+  EXPECT_NE(e.out.find("from the scan's photograph"), std::string::npos) << e.out;
+  const std::size_t bytes = slurp(work_ / "james.pdef").size();
+  EXPECT_GT(bytes, 10'000U);
+  EXPECT_LT(bytes, 40'000U);
+  ASSERT_EQ(run({"decode", path("james.pdef"), "-o", path("james.glb")}).exit_code, 0);
+  const auto node = find_node();
+  if (!node) GTEST_SKIP() << "node is not on PATH";
+  if (const auto validator = find_validator(); validator)
+    expect_valid_gltf(*node, *validator, work_ / "james.glb");
+  if (!std::filesystem::exists("/usr/bin/chromium"))
+    GTEST_SKIP() << "no /usr/bin/chromium (apt-get install chromium)";
+  const std::filesystem::path viewer = fixtures().parent_path().parent_path() / "tools" / "gltf_viewer";
+  if (!std::filesystem::exists(viewer / "node_modules" / "three"))
+    GTEST_SKIP() << "the viewer's packages are missing: cd tools/gltf_viewer && npm install";
+  const std::string command = quoted(*node) + quoted(viewer / "screenshot.mjs") +
+                              quoted(work_ / "james.glb") + quoted(work_ / "james.png") + "> " +
+                              quoted(work_ / "james.json") + "2>&1";
+  ASSERT_EQ(std::system(command.c_str()), 0) << command;
+  const nlohmann::json stats = nlohmann::json::parse(slurp(work_ / "james.json"), nullptr, false);
+  ASSERT_TRUE(stats.is_object()) << slurp(work_ / "james.json");
+  EXPECT_EQ(stats["textured"], nlohmann::json::array({true})) << stats.dump();
+  EXPECT_GT(stats["covered"].get<double>(), 0.15) << stats.dump();
+  EXPECT_GT(stats["mean_saturation"].get<double>(), 20.0) << stats.dump();
+  EXPECT_GT(stats["mean_rgb"][0].get<double>(), stats["mean_rgb"][2].get<double>() + 20.0) << stats.dump();
 }
 
 } // namespace

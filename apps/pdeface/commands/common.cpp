@@ -217,6 +217,11 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
           "face mask\n",
           r->measured->to_scan.mean, r->measured->to_scan.p95, r->measured->to_scan.max);
   }
+  if (const std::optional<pipeline::TextureOutcome>& t = made->texture)
+    fmt::print("texture layer: {} bytes ({} x {} texels from the scan's {}, which {:.1f} % of them met)\n",
+               t->bytes, t->width, t->height,
+               t->source == metrics::ColourSource::Texture ? "photograph" : "vertex colours",
+               100.0 * t->found_share);
   if (made->check) print_check(*made->check);
   print_holes_and_gaps(p);
   return 0;

@@ -20,24 +20,29 @@ struct EncodeArgs {
   std::optional<double> target_error;
   std::string target_measure = "p95";
   std::optional<double> residual_spacing;
+  bool texture = false;
+  double texel = 0.5;
+  int texture_quality = 80;
 };
 
 int run_encode(const EncodeArgs& args) {
   Result<align::LandmarkSource> landmarks = landmark_source(args.curves.landmarks);
   if (!landmarks) return fail(landmarks.error());
-  pipeline::EncodeRequest request{.landmarks = *std::move(landmarks),
-                                  .profiles = args.curves.profile_options(),
-                                  .pde = args.surface.pde_options(),
-                                  .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
-                                  .residual = {.size_bytes = args.size,
-                                               .target_error_mm = args.target_error,
-                                               .target_measure = *value_named<pipeline::TargetMeasure>(
-                                                   pipeline::kTargetMeasureNames, args.target_measure),
-                                               .spacing_mm = args.residual_spacing},
-                                  .store_landmarks = args.store_landmarks,
-                                  .name = args.name,
-                                  .source = args.in.string(),
-                                  .force = args.force};
+  pipeline::EncodeRequest request{
+      .landmarks = *std::move(landmarks),
+      .profiles = args.curves.profile_options(),
+      .pde = args.surface.pde_options(),
+      .encoding = {.lossless = args.lossless, .max_error_mm = args.max_error},
+      .residual = {.size_bytes = args.size,
+                   .target_error_mm = args.target_error,
+                   .target_measure = *value_named<pipeline::TargetMeasure>(pipeline::kTargetMeasureNames,
+                                                                           args.target_measure),
+                   .spacing_mm = args.residual_spacing},
+      .texture = {.wanted = args.texture, .texel_mm = args.texel, .quality = args.texture_quality},
+      .store_landmarks = args.store_landmarks,
+      .name = args.name,
+      .source = args.in.string(),
+      .force = args.force};
   return encode_scan(args.in, args.out, request);
 }
 
@@ -76,6 +81,17 @@ void encode_command(CLI::App& app, int& status) {
   cmd->add_option("--residual-spacing", args->residual_spacing,
                   "The residual grid's spacing (mm; default by size: 1, 0.7 or 0.5)")
       ->check(CLI::Range(0.2, 5.0));
+  CLI::Option* texture = cmd->add_flag(
+      "--texture", args->texture,
+      "Add a texture layer: the scan's photograph (or vertex colours) over the face as one JPEG image");
+  cmd->add_option("--texel", args->texel, "The texture layer's texel spacing on the face (mm)")
+      ->check(CLI::Range(0.05, 5.0))
+      ->capture_default_str()
+      ->needs(texture);
+  cmd->add_option("--texture-quality", args->texture_quality, "The texture layer's JPEG quality (1-100)")
+      ->check(CLI::Range(1, 100))
+      ->capture_default_str()
+      ->needs(texture);
   args->curves.add_to(cmd);
   args->surface.add_to(cmd);
   add_force(cmd, args->force);

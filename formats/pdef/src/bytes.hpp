@@ -40,6 +40,7 @@ public:
   [[nodiscard]] std::size_t offset() const { return base_ + pos_; } //!< in the file
   [[nodiscard]] std::size_t remaining() const { return bytes_.size() - pos_; }
   [[nodiscard]] bool at_end() const { return pos_ == bytes_.size(); }
+  [[nodiscard]] std::string_view source() const { return source_; }
 
   //! Records a failure at `at` (a file offset) unless one is recorded already; returns false.
   bool fail(ErrorCode code, std::string message, std::size_t at) {

@@ -25,6 +25,9 @@ inline constexpr std::uint8_t kTagCurves = 2;
 inline constexpr std::uint8_t kTagLandmarks = 3;
 inline constexpr std::uint8_t kTagName = 4;
 inline constexpr std::uint8_t kFirstAncillaryTag = 0x80;
+//! The texture layer: an ancillary section (readers of shape alone skip it), at most once.
+inline constexpr std::uint8_t kTagTexture = 0x80;
+inline constexpr std::uint8_t kTextureJpeg = 1;
 
 //! Lossy steps are whole multiples of 2^-20 mm, so that every decoded value is an exact binary fraction.
 inline constexpr double kStepUnit = 1.0 / 1048576.0;

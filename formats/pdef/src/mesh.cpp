@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace pdeface::pdef {
 namespace {
@@ -107,7 +108,22 @@ Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution, std
     mesh = scan->mesh(face.frame.scan_units);
   }
   mesh.name = face.name;
+  if (face.texture) with_texture(mesh, scan->u_count(), scan->v_count(), *face.texture);
   return mesh;
+}
+
+void with_texture(Mesh& mesh, std::size_t u_count, std::size_t v_count, const Image& texture) {
+  if (mesh.vertex_count() != u_count * v_count || u_count < 2 || v_count < 2)
+    throw std::invalid_argument(
+        "pdef::with_texture: a mesh that is not a grid of u_count × v_count vertices");
+  mesh.texcoord_triangles.clear();
+  mesh.texcoords.resize(mesh.vertex_count());
+  const double du = 1.0 / static_cast<double>(u_count - 1), dv = 1.0 / static_cast<double>(v_count - 1);
+  for (std::size_t k = 0; k < v_count; ++k)
+    for (std::size_t i = 0; i < u_count; ++i)
+      mesh.texcoords[k * u_count + i] = Vec2f(static_cast<float>(static_cast<double>(i) * du),
+                                              static_cast<float>(static_cast<double>(k) * dv));
+  mesh.material = Material{"face", Vec4f::Ones(), texture};
 }
 
 bool has_offsets(const Face& face) { return face.residual && !face.residual->field.empty(); }

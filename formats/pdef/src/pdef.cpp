@@ -2,6 +2,8 @@
 
 #include "pdeface/pdef/pdef.hpp"
 
+#include "pdeface/core/image.hpp"
+
 #include "bytes.hpp"
 #include "codec.hpp"
 #include "entropy.hpp"
@@ -106,6 +108,12 @@ std::optional<Error> check_face(const Face& face, const EncodeOptions& options) 
   }
   if (face.name.size() > kMaxName || !printable(face.name))
     return invalid(fmt::format("the name: at most {} printable characters", kMaxName));
+  if (face.texture) {
+    const Result<ImageInfo> info = inspect_image(face.texture->bytes, "the texture");
+    if (!info || info->mime_type != "image/jpeg")
+      return invalid("the texture must be one JPEG image" +
+                     (info ? std::string() : ": " + info.error().message));
+  }
   if (!options.lossless && (!(options.max_error_mm > 0) || !std::isfinite(options.max_error_mm)))
     return invalid(fmt::format("the maximum error must be positive, not {}", options.max_error_mm));
   return std::nullopt;
@@ -219,6 +227,9 @@ std::string write_file(const Face& face, const Quantised* q, const Grid& grid, b
   if (!face.landmarks.empty())
     append_section(file, detail::kTagLandmarks, landmarks_section(face, lossless ? nullptr : &grid));
   if (!face.name.empty()) append_section(file, detail::kTagName, face.name);
+  if (face.texture) // an ancillary section, so that a reader of shape alone skips it
+    append_section(file, detail::kTagTexture,
+                   std::string(1, static_cast<char>(detail::kTextureJpeg)) + face.texture->bytes);
   std::string& bytes = file.str();
   const auto length = static_cast<std::uint32_t>(bytes.size() + detail::kChecksumBytes);
   for (int i = 0; i < 4; ++i)
@@ -596,12 +607,38 @@ void read_landmarks(Reader& r, Face& face, const Meta& m, bool lossless) {
   if (!r.at_end()) r.fail_here(ErrorCode::Malformed, "bytes left over at the end of the landmarks section");
 }
 
+// The texture layer: a codec byte (1: JPEG) and the image file, whose header must say JPEG and at most
+// `kMaxImagePixels` (the pixels themselves are never decoded here).
+void read_texture(Reader& r, Face& face, std::size_t size) {
+  const std::size_t at = r.offset();
+  const std::uint8_t codec = r.u8("the texture's codec");
+  if (!r.ok()) return;
+  if (codec != detail::kTextureJpeg) {
+    r.fail(ErrorCode::Malformed, fmt::format("texture codec {} (1: JPEG)", codec), at);
+    return;
+  }
+  std::string bytes(r.take(size - 1, "the texture's image"));
+  if (!r.ok()) return;
+  const Result<ImageInfo> info = inspect_image(bytes, r.source());
+  if (!info) {
+    r.fail(info.error().code, "the texture's image: " + info.error().message,
+           at + 1 + info.error().where.byte.value_or(0));
+    return;
+  }
+  if (info->mime_type != "image/jpeg") {
+    r.fail(ErrorCode::Malformed, "the texture's image is not a JPEG image", at + 1);
+    return;
+  }
+  face.texture = Image{std::move(bytes), "image/jpeg", {}};
+}
+
 std::string section_name(std::uint8_t tag) {
   switch (tag) {
   case detail::kTagFace: return "face";
   case detail::kTagCurves: return "curves";
   case detail::kTagLandmarks: return "landmarks";
   case detail::kTagName: return "name";
+  case detail::kTagTexture: return "texture";
   default: return fmt::format("ancillary 0x{:02x}", tag);
   }
 }
@@ -647,13 +684,14 @@ Result<Encoded> encode(const Face& face, const EncodeOptions& options) {
   return out;
 }
 
-Result<Face> decode(std::string_view bytes, std::string_view source) {
+Result<Face> decode(std::string_view bytes, std::string_view source, const DecodeOptions& options) {
   Result<Container> container = read_container(bytes, source);
   if (!container) return std::move(container).error();
   Face face;
   face.curves.units = Units::Millimetres;
   face.storage.lossless = container->lossless;
   Meta meta;
+  std::size_t textures = 0;
   for (const Container::Part& part : container->parts) {
     Reader r(bytes.substr(part.content, part.size), part.content, source);
     switch (part.tag) {
@@ -671,6 +709,14 @@ Result<Face> decode(std::string_view bytes, std::string_view source) {
       if (part.size == 0 || part.size > kMaxName || !printable(face.name))
         r.fail(ErrorCode::Malformed,
                fmt::format("a name of {} bytes (1 to {} printable)", part.size, kMaxName), part.content);
+      break;
+    case detail::kTagTexture:
+      if (textures++ > 0)
+        r.fail(ErrorCode::Malformed, "a second texture section", part.offset);
+      else if (part.size == 0)
+        r.fail(ErrorCode::Malformed, "an empty texture section", part.offset);
+      else if (options.texture)
+        read_texture(r, face, part.size);
       break;
     default: break; // ancillary: skipped
     }

@@ -30,7 +30,12 @@ NormalGrid normal_grid(const Surface& surface, std::size_t width, std::size_t he
   us.back() = surface.u_max();
   for (std::size_t k = 0; k < height; ++k)
     vs[k] = std::numbers::pi * static_cast<double>(k) / static_cast<double>(height - 1);
-  NormalGrid out{width, height, surface.evaluate(us, vs).points, {}};
+  return normal_grid(surface, us, vs);
+}
+
+NormalGrid normal_grid(const Surface& surface, std::span<const double> us, std::span<const double> vs) {
+  if (us.empty() || vs.empty()) throw std::invalid_argument("pde::normal_grid: no nodes");
+  NormalGrid out{us.size(), vs.size(), surface.evaluate(us, vs).points, {}};
   const Grid du = surface.evaluate(us, vs, Derivative::U), dv = surface.evaluate(us, vs, Derivative::V);
   out.normals.resize(out.points.size());
   for (std::size_t p = 0; p < out.points.size(); ++p) {

@@ -38,6 +38,44 @@ GridSize grid_for(const pde::Surface& surface, double spacing_mm) {
   return {nodes(width), nodes(height)};
 }
 
+Hit along_normal(const metrics::SurfaceDistance& distance, const Mesh& scan, const Vec3& x, const Vec3& n,
+                 const MeasureOptions& options) {
+  Hit hit;
+  if (n.isZero()) return hit;
+  const bool cloud = scan.is_point_cloud();
+  double t = 0;
+  for (int iteration = 0; iteration < 6; ++iteration) {
+    const Vec3 at = x + t * n;
+    const metrics::SurfaceDistance::Nearest near = distance.nearest(at);
+    if (near.distance <= options.tolerance_mm) {
+      if (std::abs(t) <= options.max_offset_mm) hit = {near.point, near.triangle, t, true};
+      break;
+    }
+    double next = t + (near.point - at).dot(n); // along the normal: a point cloud's step
+    if (!cloud) {                               // a mesh: where the line meets the nearest triangle's plane
+      const Triangle& tri = scan.triangles[near.triangle];
+      const Vec3 a = scan.positions[tri[0]], b = scan.positions[tri[1]], c = scan.positions[tri[2]];
+      Vec3 m = (b - a).cross(c - a);
+      const double length = m.norm();
+      if (length > 0) {
+        m /= length;
+        const double cosine = n.dot(m);
+        if (std::abs(cosine) > 0.25) next = (near.point - x).dot(m) / cosine;
+      }
+    }
+    if (!(std::abs(next) <= options.max_offset_mm)) break;
+    t = next;
+  }
+  if (!hit.found && options.rim_reach_mm > 0) {
+    // The line misses (over a hole, past an edge): where the scan is near, move towards its nearest point
+    // along the normal, so that the surface meets a hole's rim instead of spanning it high or low.
+    const metrics::SurfaceDistance::Nearest near = distance.nearest(x);
+    if (near.distance <= options.rim_reach_mm)
+      hit = {near.point, near.triangle, (near.point - x).dot(n), true};
+  }
+  return hit;
+}
+
 Measured measure(const pde::Surface& surface, const Mesh& scan, std::size_t width, std::size_t height,
                  const MeasureOptions& options) {
   if (scan.positions.empty()) throw std::invalid_argument("residual::measure: an empty scan");
@@ -45,46 +83,11 @@ Measured measure(const pde::Surface& surface, const Mesh& scan, std::size_t widt
   const metrics::SurfaceDistance distance(scan);
   Measured out{{width, height, std::vector<double>(width * height, 0.0)},
                std::vector<std::uint8_t>(width * height, 0)};
-  const bool cloud = scan.is_point_cloud();
   for (std::size_t p = 0; p < grid.points.size(); ++p) {
-    const Vec3& x = grid.points[p];
-    const Vec3& n = grid.normals[p];
-    if (n.isZero()) continue;
-    double t = 0;
-    bool ok = false;
-    for (int iteration = 0; iteration < 6; ++iteration) {
-      const Vec3 at = x + t * n;
-      const metrics::SurfaceDistance::Nearest near = distance.nearest(at);
-      if (near.distance <= options.tolerance_mm) {
-        ok = true;
-        break;
-      }
-      double next = t + (near.point - at).dot(n); // along the normal: a point cloud's step
-      if (!cloud) {                               // a mesh: where the line meets the nearest triangle's plane
-        const Triangle& tri = scan.triangles[near.triangle];
-        const Vec3 a = scan.positions[tri[0]], b = scan.positions[tri[1]], c = scan.positions[tri[2]];
-        Vec3 m = (b - a).cross(c - a);
-        const double length = m.norm();
-        if (length > 0) {
-          m /= length;
-          const double cosine = n.dot(m);
-          if (std::abs(cosine) > 0.25) next = (near.point - x).dot(m) / cosine;
-        }
-      }
-      if (!(std::abs(next) <= options.max_offset_mm)) break;
-      t = next;
-    }
-    if (ok && std::abs(t) <= options.max_offset_mm) {
-      out.field.values[p] = t;
+    const Hit hit = along_normal(distance, scan, grid.points[p], grid.normals[p], options);
+    if (hit.found) {
+      out.field.values[p] = hit.offset;
       out.found[p] = 1;
-    } else if (options.rim_reach_mm > 0) {
-      // The line misses (over a hole, past an edge): where the scan is near, move towards its nearest point
-      // along the normal, so that the surface meets a hole's rim instead of spanning it high or low.
-      const metrics::SurfaceDistance::Nearest near = distance.nearest(x);
-      if (near.distance <= options.rim_reach_mm) {
-        out.field.values[p] = (near.point - x).dot(n);
-        out.found[p] = 1;
-      }
     }
   }
   fill(out.field, out.found);

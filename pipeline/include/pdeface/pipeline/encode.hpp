@@ -7,6 +7,7 @@
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/names.hpp"
 #include "pdeface/core/result.hpp"
+#include "pdeface/metrics/colour.hpp"
 #include "pdeface/metrics/fidelity.hpp"
 #include "pdeface/pde/surface.hpp"
 #include "pdeface/pdef/pdef.hpp"
@@ -52,6 +53,22 @@ struct ResidualOutcome {
   std::optional<metrics::MeshFidelity> measured; //!< target: the file's decoded surface measured on the scan
 };
 
+//! A texture layer in the file (docs/pdef-format.md, "The texture layer"): the scan's colour (its
+//! photograph, else its vertex colours) resampled over the surface's (u, v) domain into one JPEG image.
+struct TextureRequest {
+  bool wanted = false;
+  double texel_mm = 0.5; //!< the texels' spacing on the face (mm)
+  int quality = 80;      //!< JPEG quality, 1-100
+};
+
+//! What the texture layer took.
+struct TextureOutcome {
+  std::size_t width = 0, height = 0; //!< texels
+  double found_share = 0.0;          //!< of the texels whose normal line met the scan (the rest filled)
+  std::size_t bytes = 0;             //!< the JPEG image
+  metrics::ColourSource source = metrics::ColourSource::None;
+};
+
 struct EncodeRequest {
   align::LandmarkSource landmarks;
   slice::ProfileOptions profiles;
@@ -59,6 +76,7 @@ struct EncodeRequest {
   pde::Options pde{.spacing = pde::Spacing::Physical};
   pdef::EncodeOptions encoding;
   ResidualRequest residual;     //!< none by default: the curves alone (version 2, ~1 KB)
+  TextureRequest texture;       //!< none by default
   bool store_landmarks = false; //!< also store the landmarks (canonical frame)
   std::string name;             //!< stored when not empty
   std::string source;           //!< the scan's name, for errors
@@ -75,6 +93,7 @@ struct EncodeOutcome {
   pdef::Encoded encoded;
   std::optional<metrics::SelfCheck> check; //!< when the request asked for it
   std::optional<ResidualOutcome> residual; //!< when the request asked for a layer
+  std::optional<TextureOutcome> texture;   //!< when the request asked for a texture layer
 };
 
 //! `pdeface encode`: aligned (landmarks detected or from a file), then `encode_aligned`. Errors: those of

@@ -78,9 +78,16 @@ struct SurfaceMesh {
 //! spacing; with a residual layer its own grid): `scan_mesher(face, surface_of(face),
 //! resolution).mesh(face.frame.scan_units)`, then each vertex moved along its normal by the layer's offset
 //! there (`pde::GridMesher::displaced_mesh`; the layer's values at its nodes, bilinear between them, given
-//! the moved grid's normals), named after the
-//! face. Its scan mesh is `surface_mesh`'s to the bit. Errors: those of `surface_of` and `scan_mesher`.
+//! the moved grid's normals), named after the face; with a texture layer, textured (`with_texture`).
+//! Its scan mesh is `surface_mesh`'s to the bit. Errors: those of `surface_of` and `scan_mesher`.
 [[nodiscard]] Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution = std::nullopt,
                                    std::string_view source = {});
+
+//! A grid mesh of the face's surface (u_count × v_count vertices, vertex (i, k) at k·u_count + i, as
+//! `to_mesh` and `pde::GridMesher` make it) given the texture layer: every vertex the texture coordinate
+//! (i / (u_count − 1), k / (v_count − 1)) (docs/pdef-format.md, "The texture layer"), and a material whose
+//! base-colour image is `texture`. `to_mesh` does this for a face with a texture layer.
+//! 	hrow std::invalid_argument for a mesh that is not such a grid
+void with_texture(Mesh& mesh, std::size_t u_count, std::size_t v_count, const Image& texture);
 
 } // namespace pdeface::pdef

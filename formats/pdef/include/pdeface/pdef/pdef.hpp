@@ -8,6 +8,7 @@
 //! before anything is allocated, the whole file against its checksum before its contents are read, and
 //! every problem is an `Error` with a code and the byte offset where it was found.
 
+#include "pdeface/core/image.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
 #include "pdeface/core/similarity.hpp"
@@ -66,6 +67,11 @@ struct Face {
   Storage storage;                 //!< how `decode` found it stored
   //! A version 3 file's residual layer as decoded (`encode` writes curves only: `with_residual` adds one).
   std::optional<Residual> residual;
+  //! The texture layer: the face's photograph over the surface's (u, v) domain, a JPEG image (the bytes
+  //! as stored, never decoded here; docs/pdef-format.md, "The texture layer"). Pixel column x's centre is
+  //! at u = (x + ½) / W · u_max and row y's (0 the top) at v = π · (1 − (y + ½) / H): the surface point
+  //! (u, v) takes texture coordinate (u / u_max, v / π), (0, 0) the image's bottom left.
+  std::optional<Image> texture;
 
   [[nodiscard]] std::size_t curve_count() const { return curves.samples.size(); }
   [[nodiscard]] std::size_t sample_count() const {
@@ -112,18 +118,30 @@ struct Encoded {
 
 //! Encodes a face. Errors: `InvalidArgument` for a face that breaks the document's rules (curve and sample
 //! counts, planes not ascending, sizes that do not match, names too long, limits above, a maximum error that
-//! is not positive) or a surface that cannot be built from it; `NonFinite` for a NaN or infinite number.
+//! is not positive, a texture that is not one JPEG image) or a surface that cannot be built from it;
+//! `NonFinite` for a NaN or infinite number.
 [[nodiscard]] Result<Encoded> encode(const Face& face, const EncodeOptions& options = {});
+
+//! What a decoder reads of a file.
+struct DecodeOptions {
+  //! The texture layer's image bytes (its header checked); false: the section is skipped unread, as a
+  //! reader of shape alone does.
+  bool texture = true;
+};
 
 //! Decodes a `.pdef` document. Errors (each with the byte offset): `Empty`, `BadMagic` (byte 0),
 //! `UnsupportedVersion` (byte 4), `UnsupportedFormat` (unknown required flags or sections), `Truncated`,
 //! `Malformed` (trailing bytes, bad field values, sections out of order), `ChecksumMismatch`,
 //! `CountTooLarge` (counts beyond the limits or beyond what the file's size can hold), `NonFinite`.
-[[nodiscard]] Result<Face> decode(std::string_view bytes, std::string_view source = {});
+//! A texture layer that is not one JPEG image within `kMaxImagePixels` is `Malformed` (or the image's own
+//! error) at its byte.
+[[nodiscard]] Result<Face> decode(std::string_view bytes, std::string_view source = {},
+                                  const DecodeOptions& options = {});
 
 //! One part of a file, for `pdeface info`.
 struct Section {
-  std::string name; //!< "header", "face", "curves", "landmarks", "name", "checksum" or "ancillary 0x.."
+  //! "header", "face", "curves", "landmarks", "name", "texture", "checksum" or "ancillary 0x.."
+  std::string name;
   std::size_t offset = 0;
   std::size_t bytes = 0;
 };

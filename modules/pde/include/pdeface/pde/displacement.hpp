@@ -36,6 +36,10 @@ struct NormalGrid {
 };
 //! \throw std::invalid_argument for fewer than 2 nodes either way
 [[nodiscard]] NormalGrid normal_grid(const Surface& surface, std::size_t width, std::size_t height);
+//! The same at the nodes us × vs (node (i, k) at k·us.size() + i). \throw std::invalid_argument when either
+//! is empty
+[[nodiscard]] NormalGrid normal_grid(const Surface& surface, std::span<const double> us,
+                                     std::span<const double> vs);
 
 //! The offsets of `field` at the nodes of a u_count × v_count grid over the same domain (the grid's
 //! own values where the grids are the same, the bilinear interpolant elsewhere), node (i, k) at

@@ -5,6 +5,7 @@
 //! docs/residual.md). Geometry only: the layer's bytes are `formats/pdef`'s.
 
 #include "pdeface/core/mesh.hpp"
+#include "pdeface/metrics/surface_distance.hpp"
 #include "pdeface/pde/displacement.hpp"
 #include "pdeface/pde/surface.hpp"
 
@@ -31,6 +32,19 @@ struct Measured {
   std::vector<std::uint8_t> found; //!< 1 where the node's normal line met the scan
   [[nodiscard]] double found_share() const;
 };
+
+//! Where the line through `x` along the unit normal `n` meets `scan` nearest to `x` (within
+//! `options.max_offset_mm`; a hole's rim within `options.rim_reach_mm` when that is set): the point, the
+//! triangle holding it (a point cloud: the point's index) and its signed offset along `n`. `distance` is
+//! `scan`'s. Not found for a zero normal or a line that meets no scan.
+struct Hit {
+  Vec3 point = Vec3::Zero();
+  std::size_t triangle = 0;
+  double offset = 0.0;
+  bool found = false;
+};
+[[nodiscard]] Hit along_normal(const metrics::SurfaceDistance& distance, const Mesh& scan, const Vec3& x,
+                               const Vec3& n, const MeasureOptions& options = {});
 
 //! A width × height grid over the surface's domain (node (i, k) at u = i·u_max/(width − 1), v =
 //! k·π/(height − 1)): at each node, the signed distance t along the unit normal n from X(u, v) to the scan
