@@ -161,5 +161,22 @@ TEST(PdefTexture, AnImageDeclaringTooManyPixelsIsRefused) {
   EXPECT_EQ(r.error().code, ErrorCode::CountTooLarge) << r.error().to_string();
 }
 
+// tests/data/pdef/textured.pdef (the synthetic face with a 16 × 12 JPEG; also a seed of pdef_fuzz): read,
+// meshed with its texture, and written again byte for byte.
+TEST(PdefTexture, TheFixtureDecodesMeshesAndEncodesAgainToItsBytes) {
+  const std::string file = test::slurp(test::fixtures() / "pdef" / "textured.pdef");
+  const Result<Face> face = decode(file, "textured.pdef");
+  ASSERT_TRUE(face.ok()) << face.error().to_string();
+  ASSERT_TRUE(face->texture);
+  const Result<ImageInfo> info = inspect_image(face->texture->bytes, "texture");
+  ASSERT_TRUE(info.ok());
+  EXPECT_EQ(info->width, 16U);
+  EXPECT_EQ(info->height, 12U);
+  const Result<Mesh> mesh = to_mesh(*face);
+  ASSERT_TRUE(mesh.ok());
+  EXPECT_EQ(mesh->texcoords.size(), mesh->vertex_count());
+  EXPECT_EQ(encode(*face, {.max_error_mm = face->storage.step_mm}).value().bytes, file);
+}
+
 } // namespace
 } // namespace pdeface::pdef
