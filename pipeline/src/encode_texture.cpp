@@ -31,9 +31,24 @@ constexpr std::size_t kMaxTexels = 4096;
 
 Result<TexturedFace> make_texture(const Mesh& scan, const pde::Surface& surface,
                                   const TextureRequest& request, std::string_view source) {
-  if (!(request.texel_mm > 0) || !std::isfinite(request.texel_mm) || request.quality < 1 ||
-      request.quality > 100)
-    throw std::invalid_argument("pipeline::make_texture: a texel size above 0 and a quality of 1-100");
+  if (request.quality < 1 || request.quality > 100)
+    throw std::invalid_argument("pipeline::make_texture: a quality of 1-100");
+  Result<Texels> texels = sample_texels(scan, surface, request.texel_mm, source);
+  if (!texels) return std::move(texels).error();
+  return encode_texels(*texels, request.quality);
+}
+
+TexturedFace encode_texels(const Texels& texels, int quality) {
+  TexturedFace out{Image{image::encode_jpeg(texels.pixels, {.quality = quality}), "image/jpeg", {}},
+                   texels.outcome};
+  out.outcome.bytes = out.texture.bytes.size();
+  return out;
+}
+
+Result<Texels> sample_texels(const Mesh& scan, const pde::Surface& surface, double texel_mm,
+                             std::string_view source) {
+  if (!(texel_mm > 0) || !std::isfinite(texel_mm))
+    throw std::invalid_argument("pipeline::sample_texels: a texel size above 0");
   Result<metrics::SurfaceColour> colour = metrics::SurfaceColour::of(scan, source);
   if (!colour) return std::move(colour).error();
   if (colour->source() == metrics::ColourSource::None)
@@ -41,7 +56,7 @@ Result<TexturedFace> make_texture(const Mesh& scan, const pde::Surface& surface,
                       "the scan has no colour for a texture layer: neither a photograph with texture "
                       "coordinates nor vertex colours",
                       std::string(source));
-  const residual::GridSize size = residual::grid_for(surface, request.texel_mm);
+  const residual::GridSize size = residual::grid_for(surface, texel_mm);
   const std::size_t width = std::min(size.width, kMaxTexels), height = std::min(size.height, kMaxTexels);
   // Texel (x, y), y = 0 the top row, at the centre u = (x + ½) / W · u_max, v = π (1 − (y + ½) / H).
   std::vector<double> us(width), vs(height);
@@ -83,10 +98,7 @@ Result<TexturedFace> make_texture(const Mesh& scan, const pde::Surface& surface,
     for (std::size_t k = 0; k < 3; ++k)
       pixels.rgb[3 * p + k] =
           static_cast<std::uint8_t>(std::clamp(std::lround(255.0 * channels[k].values[p]), 0L, 255L));
-  TexturedFace out{Image{image::encode_jpeg(pixels, {.quality = request.quality}), "image/jpeg", {}},
-                   outcome};
-  out.outcome.bytes = out.texture.bytes.size();
-  return out;
+  return Texels{std::move(pixels), outcome};
 }
 
 } // namespace pdeface::pipeline

@@ -1,6 +1,7 @@
 #pragma once
 // The texture layer's step inside the pipeline (encode.cpp, report.cpp): private to pipeline/.
 
+#include "pdeface/image/image.hpp"
 #include "pdeface/pipeline/encode.hpp"
 
 #include <string_view>
@@ -12,6 +13,18 @@ struct TexturedFace {
   Image texture; //!< the JPEG image
   TextureOutcome outcome;
 };
+
+//! The texels of a texture layer before they are encoded: the scan's colours over the surface.
+struct Texels {
+  image::Pixels pixels;
+  TextureOutcome outcome; //!< `bytes` 0 until encoded
+};
+
+//! `make_texture`'s first step, the texels at `texel_mm` (what every quality of a texture layer shares).
+[[nodiscard]] Result<Texels> sample_texels(const Mesh& scan, const pde::Surface& surface, double texel_mm,
+                                           std::string_view source);
+//! Its second: the texels as a JPEG image of `quality`.
+[[nodiscard]] TexturedFace encode_texels(const Texels& texels, int quality);
 
 //! The texture layer of `surface` (canonical frame, mm) from `scan` (the same frame): each texel the scan's
 //! colour (its photograph through its texture coordinates, else its vertex colours) where the texel's

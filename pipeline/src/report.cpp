@@ -7,6 +7,8 @@
 #include "pdeface/align/frame.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
+#include "pdeface/image/image.hpp"
+#include "pdeface/metrics/colour.hpp"
 #include "pdeface/pipeline/encode.hpp"
 #include "pdeface/pipeline/reconstruct.hpp"
 
@@ -31,6 +33,8 @@ std::string_view to_string(Method method) noexcept {
   case Method::Draco: return "draco";
   case Method::DecimateDraco: return "decimate+draco";
   case Method::Pde: return "pde";
+  case Method::DracoColour: return "draco+colour";
+  case Method::PdeTexture: return "pde+texture";
   }
   return "?";
 }
@@ -61,7 +65,9 @@ struct Task {
 
 // The variant's row from its encoding: sizes, times and the decoded mesh's counts.
 void fill(Variant& v, const Encoded& e, bool keep_bytes) {
-  v.bytes = e.bytes.size();
+  v.bytes = e.bytes.size() + e.beside_bytes;
+  v.image_bytes = e.image_bytes;
+  v.attribute_bytes = e.attribute_bytes;
   v.encode_ms = e.encode_ms;
   v.decode_ms = e.decode_ms;
   v.vertices = e.decoded.vertex_count();
@@ -118,6 +124,27 @@ Result<Mesh> variant_geometry(const Mesh& scan, const CanonicalScan& canonical, 
   return geometry;
 }
 
+// What the colour rows are measured on (step 7): the scan's colours (canonical frame) and points of its
+// face, where the scan has colour.
+struct ColourYardstick {
+  metrics::SurfaceColour colour;
+  metrics::SurfaceDistance distance;
+  std::vector<Vec3> points; // on the scan, in the face mask
+
+  static std::optional<ColourYardstick> make(const Prepared& prepared, const CompareOptions& options,
+                                             std::string_view name) {
+    if (!options.colour) return std::nullopt;
+    const Mesh& scan = prepared.canonical.mesh;
+    Result<metrics::SurfaceColour> colour = metrics::SurfaceColour::of(scan, name);
+    if (!colour || colour->source() == metrics::ColourSource::None) return std::nullopt;
+    std::vector<Vec3> points;
+    for (const Vec3& p : metrics::sample_surface(scan, options.colour_spacing_mm))
+      if (prepared.yardstick.mask().contains(p)) points.push_back(p);
+    if (points.empty()) return std::nullopt;
+    return ColourYardstick{*std::move(colour), metrics::SurfaceDistance(scan), std::move(points)};
+  }
+};
+
 // Steps 3 and 5: tasks made in parallel and each decoded variant measured on the yardstick.
 class Measurer {
 public:
@@ -129,6 +156,7 @@ public:
     return align::to_canonical(decoded, prepared_.canonical.frame);
   }
   [[nodiscard]] const metrics::FaceYardstick& yardstick() const { return prepared_.yardstick; }
+  void measure_colour_on(const ColourYardstick* colour) { colour_ = colour; }
 
   void run(std::vector<Task>& tasks) const {
     detail::parallel_for(tasks.size(), options_.threads, [&](std::size_t i) {
@@ -145,6 +173,19 @@ private:
     }
     fill(task.variant, *e, options_.keep_bytes);
     const Mesh mesh = in_canonical(e->decoded);
+    const bool coloured =
+        task.variant.method == Method::DracoColour || task.variant.method == Method::PdeTexture;
+    if (coloured && colour_) {
+      Result<metrics::SurfaceColour> colour = metrics::SurfaceColour::of(mesh, task.variant.name);
+      if (!colour) {
+        task.variant.failure = colour.error().message;
+        return;
+      }
+      const metrics::SurfaceDistance on_mesh(mesh);
+      task.variant.colour =
+          metrics::colour_error(colour_->colour, colour_->distance, *colour, on_mesh, colour_->points);
+    }
+    const bool pde = task.variant.method == Method::Pde || task.variant.method == Method::PdeTexture;
     if (task.variant.method != Method::Raw && task.variant.method != Method::Gzip) {
       Result<metrics::MeshFidelity> f = yardstick().measure(mesh);
       if (!f) {
@@ -154,7 +195,7 @@ private:
                      task.variant.budget > 0 && task.variant.method == Method::Pde
                          ? with_scans_folds(options_.check, prepared_.canonical.mesh, yardstick().mask())
                          : options_.check);
-                 task.variant.method == Method::Pde && !check.passed()) {
+                 pde && !check.passed()) {
         // What `pdeface encode` would refuse to write is a failed row, never a silent number.
         task.variant.failure = "self-check failed: " + check.summary();
         task.keep_mesh = false;
@@ -162,13 +203,15 @@ private:
         task.variant.fidelity = *f;
       }
     }
-    if (task.keep_mesh || task.variant.method == Method::Raw || task.variant.method == Method::Gzip)
+    if (task.keep_mesh || coloured || task.variant.method == Method::Raw ||
+        task.variant.method == Method::Gzip)
       task.decoded = e->decoded;
   }
 
   const Prepared& prepared_;
   const CompareOptions& options_;
   const std::function<void(std::string_view)>& tick_;
+  const ColourYardstick* colour_ = nullptr;
 };
 
 // Step 3's tasks: raw files (and gzipped), Draco at each quantisation, and the PDE at each ratio (what the
@@ -283,10 +326,91 @@ std::vector<Task> decimation_tasks(const std::vector<Task>& tasks, const Mesh& g
   return decimated;
 }
 
+// Step 7's mesh: the geometry with the scan's colour attributes (texture coordinates and their seams, vertex
+// colours) and no normals or material (Draco keeps neither: the photograph goes beside the file).
+Mesh colour_geometry(const Mesh& scan, const CanonicalScan& canonical, const CompareOptions& options) {
+  Mesh out = scan;
+  if (options.crop_face)
+    if (Result<Mesh> face = align::crop_face(canonical.mesh, canonical.landmarks); face)
+      out = align::to_scan(*face, canonical.frame);
+  out.normals.clear();
+  out.material.reset();
+  return out;
+}
+
+// The photograph at `scale` of its size: the scan's own image file at 1, else resized and encoded as JPEG.
+Result<Image> photo_at(const Image& photo, double scale, int quality, std::string_view name) {
+  if (scale >= 1.0) return photo;
+  Result<image::Pixels> pixels = image::decode(photo, name);
+  if (!pixels) return std::move(pixels).error();
+  const auto side = [&](std::uint32_t n) {
+    return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(std::lround(n * scale)));
+  };
+  const image::Pixels small = image::resized(*pixels, side(pixels->width), side(pixels->height));
+  return Image{image::encode_jpeg(small, {.quality = quality}), "image/jpeg", {}};
+}
+
+// Step 7's tasks (issue 20): Draco with the colour attributes beside the photograph at each scale (or the
+// vertex colours alone), and the `.pdef` with a texture layer at each setting. They refer to `coloured`,
+// `pde`, `scan` and `options`, which must outlive them.
+std::vector<Task> colour_tasks(const Mesh& coloured, const Mesh& scan, detail::PdeFiles& pde,
+                               const CompareOptions& options, std::size_t plain_draco_bytes,
+                               std::string_view name) {
+  std::vector<Task> tasks;
+  const bool photo = scan.material && scan.material->base_color_image &&
+                     !scan.material->base_color_image->bytes.empty() && !scan.texcoords.empty();
+  const int bits = options.colour_draco_bits;
+  const std::vector<double> scales = photo ? options.photo_scales : std::vector<double>{0.0};
+  for (const double scale : scales) {
+    const std::string what = !photo ? "colours"
+                             : scale >= 1.0
+                                 ? "photo"
+                                 : fmt::format("photo {:g} % q{}", 100.0 * scale, options.photo_quality);
+    tasks.push_back({.variant = {.method = Method::DracoColour,
+                                 .name = fmt::format("draco {} bits + {}", bits, what),
+                                 .extension = ".drc",
+                                 .bits = bits,
+                                 .lossless = false},
+                     .make = [&, scale, photo, bits, plain_draco_bytes, name]() -> Result<Encoded> {
+                       Result<Encoded> e =
+                           detail::encode_draco(coloured, bits, options.draco_level, options.draco_uv_bits,
+                                                options.draco_color_bits);
+                       if (!e) return e;
+                       if (plain_draco_bytes > 0 && e->bytes.size() > plain_draco_bytes)
+                         e->attribute_bytes = e->bytes.size() - plain_draco_bytes;
+                       if (photo) {
+                         Result<Image> image =
+                             photo_at(*scan.material->base_color_image, scale, options.photo_quality, name);
+                         if (!image) return std::move(image).error();
+                         e->beside_bytes = e->image_bytes = image->bytes.size();
+                         e->decoded.material = Material{"photo", Vec4f::Ones(), *std::move(image)};
+                       }
+                       return e;
+                     }});
+  }
+  for (const CompareOptions::Texture& t : options.textures)
+    tasks.push_back({.variant = {.method = Method::PdeTexture,
+                                 .name = fmt::format("pde {:g} % + texture {:g} mm q{}",
+                                                     100.0 * options.pde_budget_ratio, t.texel_mm, t.quality),
+                                 .extension = ".pdef",
+                                 .ratio = options.pde_budget_ratio,
+                                 .lossless = false},
+                     .make = [&, t]() -> Result<Encoded> {
+                       Result<Encoded> e =
+                           pde.make(options.pde_budget_ratio, false, std::nullopt,
+                                    {.wanted = true, .texel_mm = t.texel_mm, .quality = t.quality});
+                       if (!e) return e;
+                       if (e->decoded.material && e->decoded.material->base_color_image)
+                         e->image_bytes = e->decoded.material->base_color_image->bytes.size();
+                       return e;
+                     }});
+  return tasks;
+}
+
 // Step 6: the rows in a reading order (raw, gzip, Draco, decimate + Draco, PDE), their sizes against the
 // raw PLY's, and the heat maps of the variants that kept their meshes.
 void add_rows(ScanReport& report, std::vector<Task>& tasks, std::vector<Task>& decimated,
-              const Measurer& measurer, const CompareOptions& options) {
+              std::vector<Task>& coloured, const Measurer& measurer, const CompareOptions& options) {
   std::vector<Task*> order;
   for (Method m : {Method::Raw, Method::Gzip, Method::Draco})
     for (Task& t : tasks)
@@ -295,12 +419,23 @@ void add_rows(ScanReport& report, std::vector<Task>& tasks, std::vector<Task>& d
     order.push_back(&t);
   for (Task& t : tasks)
     if (t.variant.method == Method::Pde) order.push_back(&t);
+  for (Task& t : coloured)
+    order.push_back(&t);
   for (const Task* t : order)
     if (t->variant.method == Method::Raw && t->variant.extension == ".ply")
       report.ply_bytes = t->variant.bytes;
   for (Task* t : order) {
     if (report.ply_bytes > 0)
       t->variant.ratio_to_ply = static_cast<double>(t->variant.bytes) / static_cast<double>(report.ply_bytes);
+    const bool colour = t->variant.method == Method::DracoColour || t->variant.method == Method::PdeTexture;
+    if (colour && t->decoded && t->variant.colour)
+      if (Result<std::string> glb =
+              formats::encode_mesh(measurer.in_canonical(*t->decoded), "textured.glb", {});
+          glb)
+        report.textured.push_back(
+            {t->variant.name,
+             detail::slug(report.name) + "_" + detail::slug(t->variant.name) + "_textured.glb",
+             *std::move(glb)});
     if (t->keep_mesh && t->decoded && t->variant.fidelity)
       report.heat_maps.push_back(detail::heat_map(
           measurer.in_canonical(*t->decoded), measurer.yardstick(), options.heat_max_mm, t->variant.name,
@@ -329,14 +464,29 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   Result<Mesh> geometry = variant_geometry(scan, prepared->canonical, options, report);
   if (!geometry) return std::move(geometry).error();
 
-  const Measurer measurer(*prepared, options, tick);
+  Measurer measurer(*prepared, options, tick);
   detail::PdeFiles pde(scan, prepared->alignment, prepared->canonical, options.scheme, std::string(name));
   std::vector<Task> tasks = encoding_tasks(*geometry, pde, options);
   measurer.run(tasks);
   share_raw_fidelity(tasks, measurer);
   std::vector<Task> decimated = decimation_tasks(tasks, *geometry, options, measurer);
   measurer.run(decimated);
-  add_rows(report, tasks, decimated, measurer, options);
+  // Colour, where the scan has it.
+  const std::optional<ColourYardstick> colour = ColourYardstick::make(*prepared, options, name);
+  std::vector<Task> coloured;
+  Mesh with_colour;
+  if (colour) {
+    report.colour = colour->colour.source();
+    measurer.measure_colour_on(&*colour);
+    with_colour = colour_geometry(scan, prepared->canonical, options);
+    std::size_t plain = 0; // the geometry's Draco bytes at the colour rows' bits
+    for (const Task& t : tasks)
+      if (t.variant.method == Method::Draco && t.variant.bits == options.colour_draco_bits)
+        plain = t.variant.bytes;
+    coloured = colour_tasks(with_colour, scan, pde, options, plain, name);
+    measurer.run(coloured);
+  }
+  add_rows(report, tasks, decimated, coloured, measurer, options);
   report.seconds = std::chrono::duration<double>(detail::Clock::now() - start).count();
   return report;
 }

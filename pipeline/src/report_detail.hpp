@@ -37,6 +37,9 @@ struct Table {
 //! The summary across scans (mean ± sd per variant) and one scan's rows.
 [[nodiscard]] Table summary_table(const Report& report);
 [[nodiscard]] Table scan_table(const ScanReport& scan);
+//! The colour rows of a scan, and across scans (issue 20).
+[[nodiscard]] Table colour_table(const ScanReport& scan);
+[[nodiscard]] Table colour_summary_table(const Report& report);
 //! The `.pdef` with a residual layer against decimate + Draco at each byte budget (mesh → scan mean, p95,
 //! max): one scan's, and across scans (the median scan and the worst).
 [[nodiscard]] Table rd_scan_table(const ScanReport& scan);

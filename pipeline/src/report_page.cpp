@@ -66,6 +66,8 @@ std::vector<Series> series_of(const Report& report) {
     case Method::Draco: s = 2; break;
     case Method::DecimateDraco: s = 3; break;
     case Method::Pde: s = a.name.find("lossless") != std::string::npos ? 5 : 4; break;
+    case Method::DracoColour:
+    case Method::PdeTexture: continue; // their geometry is another row's: measured on colour (report.md)
     }
     out[s].points.emplace_back(a.bytes.mean, a.mask_mean.mean);
     out[s].tags.push_back(tag_of(a));
@@ -285,6 +287,8 @@ std::vector<OutputFile> report_files(const Report& report, const std::filesystem
   for (const ScanReport& scan : report.scans) {
     for (const HeatMap& h : scan.heat_maps)
       if (!h.glb.empty()) files.push_back({folder / h.file, h.glb});
+    for (const TexturedGlb& t : scan.textured)
+      files.push_back({folder / t.file, t.glb});
     for (const Variant& v : scan.variants)
       if (!v.encoded.empty())
         files.push_back(

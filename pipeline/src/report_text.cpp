@@ -202,6 +202,58 @@ Table scan_table(const ScanReport& scan) {
   return t;
 }
 
+std::string psnr_text(double db) { return std::isinf(db) ? std::string("∞") : number(db, 2); }
+
+// The colour rows of a scan: bytes in parts, and the face's colours against the scan's.
+Table colour_table(const ScanReport& scan) {
+  Table t{.header = {"variant", "bytes", "geometry", "colour attributes", "image", "PSNR (dB)", "ΔE₀₀ mean",
+                     "ΔE₀₀ p95", "mesh → scan mean"},
+          .right = {false, true, true, true, true, true, true, true, true}};
+  for (const Variant& v : scan.variants) {
+    if (v.method != Method::DracoColour && v.method != Method::PdeTexture) continue;
+    if (!v.colour) {
+      std::vector<std::string> row{v.name, "–", "–", "–", "–", "failed: " + v.failure};
+      row.resize(t.header.size());
+      t.rows.push_back(std::move(row));
+      continue;
+    }
+    const std::size_t geometry = v.bytes - v.image_bytes - v.attribute_bytes;
+    t.rows.push_back({v.name, fmt::format("{}", v.bytes), fmt::format("{}", geometry),
+                      v.attribute_bytes > 0 ? fmt::format("{}", v.attribute_bytes) : std::string("–"),
+                      fmt::format("{}", v.image_bytes), psnr_text(v.colour->psnr_db),
+                      number(v.colour->mean_delta_e, 2), number(v.colour->p95_delta_e, 2),
+                      v.fidelity ? number(v.fidelity->to_scan.mean) : "–"});
+  }
+  return t;
+}
+
+// The colour rows across scans: mean bytes, PSNR and ΔE₀₀ of each (scans with colour only).
+Table colour_summary_table(const Report& report) {
+  Table t{.header = {"variant", "scans", "bytes", "image bytes", "PSNR (dB)", "ΔE₀₀ mean", "ΔE₀₀ p95"},
+          .right = {false, true, true, true, true, true, true}};
+  std::vector<std::string> names;
+  for (const ScanReport& scan : report.scans)
+    for (const Variant& v : scan.variants)
+      if (v.colour && std::ranges::find(names, v.name) == names.end()) names.push_back(v.name);
+  for (const std::string& name : names) {
+    std::vector<double> bytes, image, psnr, mean, p95;
+    for (const ScanReport& scan : report.scans)
+      for (const Variant& v : scan.variants)
+        if (v.name == name && v.colour) {
+          bytes.push_back(static_cast<double>(v.bytes));
+          image.push_back(static_cast<double>(v.image_bytes));
+          if (std::isfinite(v.colour->psnr_db)) psnr.push_back(v.colour->psnr_db);
+          mean.push_back(v.colour->mean_delta_e);
+          p95.push_back(v.colour->p95_delta_e);
+        }
+    const auto f2 = [](double v) { return number(v, 2); };
+    t.rows.push_back({name, fmt::format("{}", bytes.size()), plus_minus(finish(bytes), bytes_text),
+                      plus_minus(finish(image), bytes_text), plus_minus(finish(psnr), f2),
+                      plus_minus(finish(mean), f2), plus_minus(finish(p95), f2)});
+  }
+  return t;
+}
+
 std::string scan_heading(const ScanReport& scan) {
   if (!scan.failure.empty()) return fmt::format("{}: failed", scan.name);
   return fmt::format(
@@ -214,9 +266,10 @@ std::string scan_heading(const ScanReport& scan) {
 std::string method_notes(const Report& report) {
   const CompareOptions& o = report.options;
   return fmt::format(
-      "Every variant holds the scan's geometry only (positions and triangles; its normals, colours and "
-      "texture coordinates are left out of every variant alike) and is measured on what decoding its bytes "
-      "gives back. Distances are in mm in the canonical face frame (the scan's geometry at its own scale, "
+      "Every variant but the colour rows holds the scan's geometry only (positions and triangles; its "
+      "normals, colours and texture coordinates are left out of them alike) and is measured on what decoding "
+      "its bytes gives back. Distances are in mm in the canonical face frame (the scan's geometry at its own "
+      "scale, "
       "in mm), sampled every {:g} mm on each surface:\n"
       "- **coverage**: the share of the scan's face (its front-most surface inside the face mask its "
       "landmarks outline: an ellipse from the chin to the forehead, across the cheeks just beyond the outer "
@@ -233,9 +286,18 @@ std::string method_notes(const Report& report) {
       "the most triangles whose Draco bytes land within {:g} % under the budget, for each of {} bits, "
       "keeping the bits of least error; gzip at level {}.\n"
       "- Heat maps: each vertex's distance to the scan, 0 mm blue to {:g} mm red (and beyond), grey outside "
-      "the face mask.\n",
+      "the face mask.\n"
+      "- **Colour** (scans that have it: a photograph with texture coordinates, or vertex colours): Draco "
+      "with the texture coordinates ({} bits; vertex colours: {} bits) beside the photograph (its own file, "
+      "and resized to a share of its size as JPEG q{}), and the `.pdef` with a texture layer (texel mm, JPEG "
+      "quality); bytes are the whole (file and photograph), split into geometry, colour attributes and "
+      "image. Measured on the scan's face every {:g} mm inside the mask: the colour of each point on the "
+      "scan against the variant's at its nearest point, as 8-bit sRGB: **PSNR** over R, G and B, and "
+      "**ΔE₀₀** (CIEDE2000 in CIELAB; ~1 is just noticeable). Textured GLBs of these rows beside the heat "
+      "maps.\n",
       o.fidelity.sample_spacing_mm, o.fidelity.covered_within_mm, o.draco_level, 100.0 * o.budget_slack,
-      fmt::join(o.decimate_bits, ", "), o.gzip_level, o.heat_max_mm);
+      fmt::join(o.decimate_bits, ", "), o.gzip_level, o.heat_max_mm, o.draco_uv_bits, o.draco_color_bits,
+      o.photo_quality, o.colour_spacing_mm);
 }
 
 } // namespace detail
@@ -246,6 +308,8 @@ std::string report_markdown(const Report& report) {
                      report.scans.size() == 1 ? "" : "s", report.failed(), report.seconds);
   out += detail::method_notes(report);
   out += "\n## Summary across scans (mean ± sd)\n\n" + detail::markdown(detail::summary_table(report));
+  if (const detail::Table colour = detail::colour_summary_table(report); !colour.rows.empty())
+    out += "\n## Colour across scans (mean ± sd; scans with colour)\n\n" + detail::markdown(colour);
   if (const detail::Table rd = detail::rd_summary_table(report); !rd.rows.empty())
     out += "\n## Rate and distortion: `.pdef` with a residual layer against decimate + Draco (mesh → scan, "
            "mm)\n\n" +
@@ -260,10 +324,20 @@ std::string report_markdown(const Report& report) {
            detail::markdown(detail::scan_table(scan));
     if (const detail::Table rd = detail::rd_scan_table(scan); !rd.rows.empty())
       out += "\nRate and distortion (mesh → scan, mm):\n\n" + detail::markdown(rd);
+    if (const detail::Table colour = detail::colour_table(scan); !colour.rows.empty())
+      out += fmt::format("\nColour (the scan's {}; face mask):\n\n",
+                         scan.colour == metrics::ColourSource::Texture ? "photograph" : "vertex colours") +
+             detail::markdown(colour);
     if (!scan.heat_maps.empty()) {
       out += "\nHeat maps (GLB, canonical frame, mm):";
       for (const HeatMap& h : scan.heat_maps)
         out += fmt::format(" [{}]({})", h.variant, h.file);
+      out += "\n";
+    }
+    if (!scan.textured.empty()) {
+      out += "\nTextured (GLB, canonical frame, mm):";
+      for (const TexturedGlb& t : scan.textured)
+        out += fmt::format(" [{}]({})", t.variant, t.file);
       out += "\n";
     }
   }
@@ -287,11 +361,12 @@ std::string report_csv(const Report& report) {
       "scan,units,method,variant,bits,budget,ratio,lossless,bytes,ratio_to_ply,encode_ms,decode_ms,vertices,"
       "triangles,coverage,mask_mean_mm,mask_rms_mm,mask_p95_mm,mask_max_mm,to_scan_mean_mm,to_scan_rms_mm,"
       "to_scan_p95_mm,to_scan_max_mm,profile_symmetry_mm,profile_eyes_mm,profile_diagonal_up_mm,"
-      "profile_diagonal_down_mm,profile_mean_mm,failure\n";
+      "profile_diagonal_down_mm,profile_mean_mm,image_bytes,attribute_bytes,psnr_db,delta_e_mean,delta_e_p95,"
+      "failure\n";
   for (const ScanReport& scan : report.scans) {
     if (!scan.failure.empty()) {
-      out +=
-          fmt::format("{},,,,,,,,,,,,,,,,,,,,,,,,,,,,{}\n", csv_quoted(scan.name), csv_quoted(scan.failure));
+      out += fmt::format("{},,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,,{}\n", csv_quoted(scan.name),
+                         csv_quoted(scan.failure));
       continue;
     }
     for (const Variant& v : scan.variants) {
@@ -301,17 +376,23 @@ std::string report_csv(const Report& report) {
           v.budget > 0 ? fmt::format("{}", v.budget) : "", v.ratio > 0 ? fmt::format("{:g}", v.ratio) : "",
           v.lossless ? 1 : 0, v.bytes, csv_number(v.ratio_to_ply), csv_number(v.encode_ms),
           csv_number(v.decode_ms), v.vertices, v.triangles);
+      const std::string colour =
+          !v.colour ? std::string(",,,,,")
+                    : fmt::format("{},{},{},{},{},", v.image_bytes, v.attribute_bytes,
+                                  std::isinf(v.colour->psnr_db) ? std::string("inf")
+                                                                : csv_number(v.colour->psnr_db),
+                                  csv_number(v.colour->mean_delta_e), csv_number(v.colour->p95_delta_e));
       if (v.fidelity) {
         const metrics::MeshFidelity& f = *v.fidelity;
         const metrics::DistanceStats& m = f.coverage.distance;
-        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},\n", csv_number(f.coverage.share),
+        out += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", csv_number(f.coverage.share),
                            csv_number(m.mean), csv_number(m.rms), csv_number(m.p95), csv_number(m.max),
                            csv_number(f.to_scan.mean), csv_number(f.to_scan.rms), csv_number(f.to_scan.p95),
                            csv_number(f.to_scan.max), csv_number(f.profile_error[0]),
                            csv_number(f.profile_error[1]), csv_number(f.profile_error[2]),
-                           csv_number(f.profile_error[3]), csv_number(f.mean_profile_error));
+                           csv_number(f.profile_error[3]), csv_number(f.mean_profile_error), colour);
       } else {
-        out += std::string(14, ',') + csv_quoted(v.failure) + "\n";
+        out += std::string(14, ',') + colour + csv_quoted(v.failure) + "\n";
       }
     }
   }
@@ -361,6 +442,12 @@ std::string report_json(const Report& report) {
               {"variants", json::array()}});
     for (const HeatMap& h : scan.heat_maps)
       s["heat_maps"].push_back({{"variant", h.variant}, {"file", h.file}, {"scale_mm", h.scale_mm}});
+    s["textured"] = json::array();
+    for (const TexturedGlb& t : scan.textured)
+      s["textured"].push_back({{"variant", t.variant}, {"file", t.file}});
+    s["colour"] = scan.colour == metrics::ColourSource::Texture         ? "photograph"
+                  : scan.colour == metrics::ColourSource::VertexColours ? "vertex colours"
+                                                                        : "none";
     for (const Variant& v : scan.variants) {
       json j{{"method", to_string(v.method)},  {"name", v.name},
              {"extension", v.extension},       {"bytes", v.bytes},
@@ -370,6 +457,15 @@ std::string report_json(const Report& report) {
       if (v.bits > 0) j["bits"] = v.bits;
       if (v.budget > 0) j["budget"] = v.budget;
       if (v.ratio > 0) j["ratio"] = v.ratio;
+      if (v.colour) {
+        j["image_bytes"] = v.image_bytes;
+        j["attribute_bytes"] = v.attribute_bytes;
+        j["colour"] = {{"psnr_db", std::isfinite(v.colour->psnr_db) ? json(v.colour->psnr_db) : json("inf")},
+                       {"delta_e2000_mean", v.colour->mean_delta_e},
+                       {"delta_e2000_p95", v.colour->p95_delta_e},
+                       {"samples", v.colour->samples},
+                       {"uncoloured", v.colour->uncoloured}};
+      }
       if (v.fidelity) {
         const metrics::MeshFidelity& f = *v.fidelity;
         json profile = json::array();

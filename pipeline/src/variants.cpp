@@ -1,5 +1,6 @@
 #include "variants.hpp"
 #include "encode_residual.hpp"
+#include "encode_texture.hpp"
 
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pdef/pdef.hpp"
@@ -14,6 +15,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <stdexcept>
 
 namespace pdeface::pipeline::detail {
 namespace {
@@ -88,11 +90,12 @@ Result<Encoded> encode_raw(const Mesh& geometry, formats::Format format, bool gz
   return e;
 }
 
-Result<Encoded> encode_draco(const Mesh& geometry, int bits, int level) {
+Result<Encoded> encode_draco(const Mesh& geometry, int bits, int level, int uv_bits, int color_bits) {
   Encoded e;
   Clock::time_point start = Clock::now();
-  Result<std::string> bytes = formats::encode_mesh(geometry, file_name(formats::Format::Draco),
-                                                   {.draco_bits = bits, .draco_level = level});
+  Result<std::string> bytes = formats::encode_mesh(
+      geometry, file_name(formats::Format::Draco),
+      {.draco_bits = bits, .draco_level = level, .draco_uv_bits = uv_bits, .draco_color_bits = color_bits});
   if (!bytes) return std::move(bytes).error();
   e.bytes = *std::move(bytes);
   e.encode_ms = milliseconds_since(start);
@@ -279,6 +282,14 @@ struct PdeFiles::AtRatio {
   double lossy_ms = 0.0;
   std::mutex grids_mutex;
   ResidualGrids grids;
+  // The texels of texture layers, by texel size (every quality of one size shares them), with their times.
+  struct SampledTexels {
+    std::once_flag once;
+    std::optional<Result<Texels>> texels;
+    double ms = 0.0;
+  };
+  std::mutex texels_mutex;
+  std::map<double, std::unique_ptr<SampledTexels>> texels;
 };
 
 PdeFiles::PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
@@ -288,9 +299,11 @@ PdeFiles::PdeFiles(const Mesh& scan, const align::Alignment& alignment, const Ca
 
 PdeFiles::~PdeFiles() = default;
 
-EncodeRequest PdeFiles::request(double ratio, bool lossless, std::optional<std::size_t> size) const {
+EncodeRequest PdeFiles::request(double ratio, bool lossless, std::optional<std::size_t> size,
+                                const TextureRequest& texture) const {
   EncodeRequest request; // what `pdeface encode` asks with its defaults, unchecked (measured by the caller)
   request.residual.size_bytes = size;
+  request.texture = texture;
   request.profiles.ratio = ratio;
   request.encoding.lossless = lossless;
   request.source = source_;
@@ -306,8 +319,11 @@ PdeFiles::AtRatio& PdeFiles::at(double ratio) {
   return *r;
 }
 
-Result<Encoded> PdeFiles::make(double ratio, bool lossless, std::optional<std::size_t> size) {
-  const EncodeRequest asked = request(ratio, lossless, size);
+Result<Encoded> PdeFiles::make(double ratio, bool lossless, std::optional<std::size_t> size,
+                               const TextureRequest& texture) {
+  if (size && texture.wanted)
+    throw std::invalid_argument("PdeFiles::make: a residual layer or a texture layer");
+  const EncodeRequest asked = request(ratio, lossless, size, texture);
   AtRatio& r = at(ratio);
   std::call_once(r.sliced_once, [&] {
     const Clock::time_point start = Clock::now();
@@ -317,7 +333,38 @@ Result<Encoded> PdeFiles::make(double ratio, bool lossless, std::optional<std::s
   if (!*r.sliced) return r.sliced->error();
   Encoded e;
   std::string bytes;
-  if (!size) {
+  const auto lossy_curves = [&]() -> const Result<EncodeOutcome>& { // the curves alone, lossy, made once
+    std::call_once(r.lossy_once, [&] {
+      const Clock::time_point start = Clock::now();
+      r.lossy = encode_sliced(canonical_, alignment_, **r.sliced, request(ratio, false, std::nullopt));
+      r.lossy_ms = milliseconds_since(start);
+    });
+    return *r.lossy;
+  };
+  if (texture.wanted && !lossless) {
+    // The lossy curves with a texture layer: what encode_sliced writes with `texture`, from the curves and
+    // texels shared by every texture of the ratio (the layer is the file's last section: `with_texture`).
+    if (!lossy_curves()) return lossy_curves().error();
+    AtRatio::SampledTexels* sampled = nullptr;
+    {
+      const std::lock_guard lock(r.texels_mutex);
+      std::unique_ptr<AtRatio::SampledTexels>& slot = r.texels[texture.texel_mm];
+      if (!slot) slot = std::make_unique<AtRatio::SampledTexels>();
+      sampled = slot.get();
+    }
+    std::call_once(sampled->once, [&] {
+      const Clock::time_point start = Clock::now();
+      sampled->texels = sample_texels(canonical_.mesh, (*r.sliced)->surface, texture.texel_mm, source_);
+      sampled->ms = milliseconds_since(start);
+    });
+    if (!*sampled->texels) return with_source(sampled->texels->error(), source_);
+    const Clock::time_point start = Clock::now();
+    Result<std::string> file = pdef::with_texture(lossy_curves()->encoded.bytes,
+                                                  encode_texels(**sampled->texels, texture.quality).texture);
+    if (!file) return std::move(file).error();
+    e.encode_ms = r.slice_ms + r.lossy_ms + sampled->ms + milliseconds_since(start);
+    bytes = *std::move(file);
+  } else if (!size) {
     const Clock::time_point start = Clock::now();
     Result<EncodeOutcome> made = encode_sliced(canonical_, alignment_, **r.sliced, asked);
     if (!made) return std::move(made).error();
@@ -325,13 +372,8 @@ Result<Encoded> PdeFiles::make(double ratio, bool lossless, std::optional<std::s
     bytes = std::move(made->encoded.bytes);
   } else {
     // The curves alone, then the layer on them: what encode_sliced does with `size`, in two steps.
-    std::call_once(r.lossy_once, [&] {
-      const Clock::time_point start = Clock::now();
-      r.lossy = encode_sliced(canonical_, alignment_, **r.sliced, request(ratio, false, std::nullopt));
-      r.lossy_ms = milliseconds_since(start);
-    });
-    if (!*r.lossy) return r.lossy->error();
-    EncodeOutcome outcome = **r.lossy;
+    if (!lossy_curves()) return lossy_curves().error();
+    EncodeOutcome outcome = *lossy_curves();
     const std::lock_guard lock(r.grids_mutex);
     std::map<double, double> before; // the grids made already (by spacing as made): their times
     for (const auto& entry : r.grids.by_spacing)

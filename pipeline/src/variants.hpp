@@ -32,7 +32,10 @@ struct Encoded {
   Mesh decoded;
   double encode_ms = 0.0;
   double decode_ms = 0.0;
-  int bits = 0; //!< Draco: the position quantisation used
+  int bits = 0;                    //!< Draco: the position quantisation used
+  std::size_t beside_bytes = 0;    //!< what goes beside the file (a photograph the mesh's UVs map into)
+  std::size_t image_bytes = 0;     //!< of the bytes, an image's (beside the file or inside it)
+  std::size_t attribute_bytes = 0; //!< of the file, its colour attributes' (texture coordinates, colours)
 };
 
 //! gzip (RFC 1952) through zlib, and back. Errors: `Malformed` for bytes that are not gzip.
@@ -43,8 +46,10 @@ struct Encoded {
 [[nodiscard]] Result<Encoded> encode_raw(const Mesh& geometry, formats::Format format, bool gzipped,
                                          int gzip_level);
 
-//! The mesh through our Draco writer at `bits` (positions) and `level`.
-[[nodiscard]] Result<Encoded> encode_draco(const Mesh& geometry, int bits, int level);
+//! The mesh through our Draco writer at `bits` (positions) and `level`; with its texture coordinates and
+//! colours when it has them, at `uv_bits` and `color_bits`.
+[[nodiscard]] Result<Encoded> encode_draco(const Mesh& geometry, int bits, int level, int uv_bits = 12,
+                                           int color_bits = 8);
 
 //! The mesh simplified by meshoptimizer to `target` triangles (the most it can reach: fewer triangles
 //! than the scan has), vertices on no triangle dropped.
@@ -71,12 +76,13 @@ struct Decimated {
 //! The `.pdef` files of one aligned scan, and what a reader makes of their bytes. `make(ratio, lossless,
 //! size)` is the file `encode_aligned` writes of the scan sliced at `ratio` (lossy within the default error,
 //! or lossless; `scheme`; with `size`, a residual layer after the curves, the file at most `size` bytes:
-//! `pdeface encode --size`), byte for byte, decoded by `pdef::decode` and meshed in the scan's frame at the
-//! default grid (`pdef::to_mesh`), encoding and decoding timed apart. What the files share is made once:
-//! the slicing and the surface at each ratio (for its lossy and lossless files), the lossy file under the
-//! files with a residual layer, and each residual grid (one for every size it serves); a file's
-//! `encode_ms` counts every step it took, shared or not, as if it had been made alone. Thread-safe; `scan`,
-//! `alignment` and `canonical` (the scan in the canonical frame, `canonical_scan`) must outlive it.
+//! `pdeface encode --size`; with `texture`, a texture layer: `pdeface encode --texture`), byte for byte,
+//! decoded by `pdef::decode` and meshed in the scan's frame at the default grid (`pdef::to_mesh`), encoding
+//! and decoding timed apart. What the files share is made once: the slicing and the surface at each ratio
+//! (for its lossy and lossless files), the lossy file under the files with a residual layer, and each
+//! residual grid (one for every size it serves); a file's `encode_ms` counts every step it took, shared or
+//! not, as if it had been made alone. Thread-safe; `scan`, `alignment` and `canonical` (the scan in the
+//! canonical frame, `canonical_scan`) must outlive it.
 class PdeFiles {
 public:
   PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
@@ -86,11 +92,13 @@ public:
   ~PdeFiles();
 
   [[nodiscard]] Result<Encoded> make(double ratio, bool lossless,
-                                     std::optional<std::size_t> size = std::nullopt);
+                                     std::optional<std::size_t> size = std::nullopt,
+                                     const TextureRequest& texture = {});
 
 private:
   struct AtRatio;
-  [[nodiscard]] EncodeRequest request(double ratio, bool lossless, std::optional<std::size_t> size) const;
+  [[nodiscard]] EncodeRequest request(double ratio, bool lossless, std::optional<std::size_t> size,
+                                      const TextureRequest& texture = {}) const;
   AtRatio& at(double ratio);
 
   const Mesh& scan_;

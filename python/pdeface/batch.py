@@ -111,12 +111,16 @@ def main(argv: Optional[Sequence[str]] = None) -> int:
     parser.add_argument("--pdef-sizes", type=lambda s: [int(x) for x in s.split(",")],
                         help=".pdef + residual layer sizes in bytes, comma-separated")
     parser.add_argument("--crop-face", action="store_true")
+    parser.add_argument("--no-colour", action="store_true",
+                        help="no colour rows (Draco with the photograph, the .pdef with a texture layer)")
     parser.add_argument("-q", "--quiet", action="store_true", help="no progress bar")
     args = parser.parse_args(argv)
     options = {k: v for k, v in (("ratios", args.ratios), ("draco_bits", args.draco_bits),
                                   ("budgets", args.budgets), ("pdef_sizes", args.pdef_sizes)) if v is not None}
     if args.crop_face:
         options["crop_face"] = True
+    if args.no_colour:
+        options["colour"] = False
     from .errors import Error
     try:
         rows = run(args.inputs, args.out, workers=args.workers, scheduler=args.scheduler,

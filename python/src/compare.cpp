@@ -50,6 +50,11 @@ json variant_json(const pipeline::Variant& v) {
          {"triangles", v.triangles},
          {"failure", v.failure},
          {"encoded", json::binary(std::vector<std::uint8_t>(v.encoded.begin(), v.encoded.end()))}};
+  j["image_bytes"] = v.image_bytes;
+  j["attribute_bytes"] = v.attribute_bytes;
+  if (v.colour)
+    j["colour"] = {v.colour->psnr_db, v.colour->mean_delta_e, v.colour->p95_delta_e, v.colour->samples,
+                   v.colour->uncoloured};
   if (v.fidelity)
     j["fidelity"] = {{"share", v.fidelity->coverage.share},
                      {"mask", stats_json(v.fidelity->coverage.distance)},
@@ -80,6 +85,13 @@ pipeline::Variant variant_from(const json& j) {
                       .triangles = j.at("triangles"),
                       .failure = j.at("failure"),
                       .encoded = bytes_of(j.at("encoded"))};
+  v.image_bytes = j.at("image_bytes");
+  v.attribute_bytes = j.at("attribute_bytes");
+  if (j.contains("colour")) {
+    const json& c = j.at("colour"); // PSNR may be +inf: CBOR keeps it
+    v.colour = metrics::ColourError{c.at(0).get<double>(), c.at(1).get<double>(), c.at(2).get<double>(),
+                                    c.at(3).get<std::size_t>(), c.at(4).get<std::size_t>()};
+  }
   if (j.contains("fidelity")) {
     const json& f = j.at("fidelity");
     v.fidelity =
@@ -92,9 +104,13 @@ pipeline::Variant variant_from(const json& j) {
 }
 
 std::string scan_state(const pipeline::ScanReport& s) {
-  json variants = json::array(), heat_maps = json::array();
+  json variants = json::array(), heat_maps = json::array(), textured = json::array();
   for (const pipeline::Variant& v : s.variants)
     variants.push_back(variant_json(v));
+  for (const pipeline::TexturedGlb& t : s.textured)
+    textured.push_back({{"variant", t.variant},
+                        {"file", t.file},
+                        {"glb", json::binary(std::vector<std::uint8_t>(t.glb.begin(), t.glb.end()))}});
   for (const pipeline::HeatMap& h : s.heat_maps)
     heat_maps.push_back({{"variant", h.variant},
                          {"file", h.file},
@@ -111,6 +127,8 @@ std::string scan_state(const pipeline::ScanReport& s) {
                {"ply_bytes", s.ply_bytes},
                {"variants", variants},
                {"heat_maps", heat_maps},
+               {"textured", textured},
+               {"colour", static_cast<int>(s.colour)},
                {"failure", s.failure},
                {"seconds", s.seconds}};
   const std::vector<std::uint8_t> cbor = json::to_cbor(j);
@@ -137,6 +155,9 @@ pipeline::ScanReport scan_from_state(const std::string& state) {
                            .glb = bytes_of(h.at("glb")),
                            .front_svg = h.at("front_svg"),
                            .scale_mm = h.at("scale_mm")});
+  for (const json& t : j.at("textured"))
+    s.textured.push_back({.variant = t.at("variant"), .file = t.at("file"), .glb = bytes_of(t.at("glb"))});
+  s.colour = static_cast<metrics::ColourSource>(j.at("colour").get<int>());
   return s;
 }
 
@@ -177,6 +198,10 @@ pipeline::CompareOptions options_from(const py::dict& kwargs) {
       o.keep_bytes = value.cast<bool>();
     else if (k == "threads")
       o.threads = value.cast<unsigned>();
+    else if (k == "colour")
+      o.colour = value.cast<bool>();
+    else if (k == "draco_uv_bits")
+      o.draco_uv_bits = value.cast<int>();
     else
       throw py::type_error("compare: unexpected option '" + k + "'");
   }
@@ -185,6 +210,8 @@ pipeline::CompareOptions options_from(const py::dict& kwargs) {
   for (const int b : o.draco_bits)
     if (b < 1 || b > 24) throw py::value_error("draco_bits must be within 1 and 24");
   if (o.draco_level < 0 || o.draco_level > 10) throw py::value_error("draco_level must be within 0 and 10");
+  if (o.draco_uv_bits < 1 || o.draco_uv_bits > 24)
+    throw py::value_error("draco_uv_bits must be within 1 and 24");
   if (!(o.heat_max_mm > 0)) throw py::value_error("heat_max must be positive");
   return o;
 }

@@ -376,10 +376,14 @@ TEST_F(Cli, CompareWithNoInputIsTheMainJob) {
   const auto dir = work_ / "pdeface-report";
   for (const char* name : {"report.md", "report.json", "report.csv", "rd.svg", "report.html"})
     EXPECT_GT(std::filesystem::file_size(dir / name), 1000U) << name;
-  std::size_t glbs = 0;
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
+  std::size_t glbs = 0, textured = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     glbs += entry.path().extension() == ".glb" ? 1 : 0;
-  EXPECT_EQ(glbs, 3U);
+    textured += entry.path().string().ends_with("_textured.glb") ? 1 : 0;
+  }
+  EXPECT_EQ(glbs, 3U + 5U) << "3 heat maps, and the colour rows (the sample's vertex colours) textured";
+  EXPECT_EQ(textured, 5U);
+  EXPECT_NE(r.out.find("3 heat-map GLBs, 5 textured GLBs"), std::string::npos) << r.out;
   const std::string md = slurp(dir / "report.md");
   EXPECT_TRUE(md.starts_with("# pdeface compare")) << md.substr(0, 200);
   EXPECT_NE(md.find("| decimate+draco 1024 B |"), std::string::npos);
@@ -415,7 +419,10 @@ TEST_F(Cli, CompareBatchReportsABadScanAndCompletesTheOthers) {
   EXPECT_EQ(md.find("notes.txt"), std::string::npos) << md;
   const std::string csv = slurp(work_ / "rep" / "report.csv");
   EXPECT_NE(md.find("## soup.obj: failed"), std::string::npos) << md;
-  EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1 + 1) + 2U) << csv; // 2 scans x rows, the failed scans' lines
+  // 2 scans x rows (raw and gzip, Draco, decimate + Draco at the budget and at the .pdef's size, the .pdef,
+  // with a residual layer, and colour: Draco with the vertex colours and 4 texture layers), the failed
+  // scans'.
+  EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1 + 1 + 5) + 2U) << csv;
   EXPECT_NE(md.find("pde 10 % + residual 2048 B"), std::string::npos) << md;
   EXPECT_NE(md.find("Rate and distortion"), std::string::npos) << md;
 

@@ -65,6 +65,7 @@ TEST_P(EveryScan, LosslessCopiesMeasureZero) {
   options.budgets_at_pde = false;
   options.ratios.clear();
   options.pde_budgets.clear();
+  options.colour = false; // the raw rows alone
   options.threads = 1;
   const Result<ScanReport> report = compare_scan(scan->mesh, GetParam(), options);
   ASSERT_TRUE(report) << report.error().to_string();

@@ -34,6 +34,7 @@ CompareOptions sample_options() {
   o.budgets = {2048, 4096};
   o.ratios = {0.1};
   o.pde_budgets = {2048};
+  o.textures = {{1.0, 80}};
   o.keep_bytes = true;
   return o;
 }
@@ -67,8 +68,9 @@ TEST(CompareSample, SampleFaceHasEveryKindOfVariantMeasured) {
   ASSERT_TRUE(s.failure.empty()) << s.failure;
   EXPECT_EQ(s.name, "sample face");
   EXPECT_EQ(s.units, Units::Millimetres);
-  // 4 raw + 4 gzip + 3 Draco + 2 budgets + 2 at the PDE sizes + 2 PDE + 1 PDE with a residual layer.
-  EXPECT_EQ(s.variants.size(), 18U);
+  // 4 raw + 4 gzip + 3 Draco + 2 budgets + 2 at the PDE sizes + 2 PDE + 1 PDE with a residual layer, and
+  // colour (its vertex colours): Draco with them, the PDE with a texture layer.
+  EXPECT_EQ(s.variants.size(), 20U);
   for (const Variant& v : s.variants) {
     SCOPED_TRACE(v.name);
     ASSERT_TRUE(v.fidelity) << v.failure;
@@ -228,7 +230,7 @@ TEST(CompareSample, DocumentsHoldEveryRow) {
   const auto lines = split(report_csv(r), '\n');
   ASSERT_EQ(lines.size(), 1 + s.variants.size());
   const std::size_t columns = split(lines[0], ',').size();
-  EXPECT_EQ(columns, 29U);
+  EXPECT_EQ(columns, 34U);
   for (std::size_t i = 1; i < lines.size(); ++i) {
     // Names hold no commas: count the separators.
     EXPECT_EQ(static_cast<std::size_t>(std::ranges::count(lines[i], ',')), columns - 1) << lines[i];
@@ -273,6 +275,80 @@ TEST(CompareSample, AVariantNoScanMadeSaysWhyAndHasNoSummaryRow) {
   EXPECT_NE(line.find("failed: nothing to decimate"), std::string::npos) << line;
   EXPECT_EQ(line.find("inf"), std::string::npos) << line;
   EXPECT_EQ(line.find("| 0 |"), std::string::npos) << line;
+}
+
+// The colour rows (issue 20): Draco with the vertex colours, and the `.pdef` with a texture layer, both
+// measured on the face's colours (PSNR, ΔE₀₀) against the scan's; their bytes in parts; a textured GLB each
+// that the validator passes. The texture row is the file `pdeface encode --texture` writes.
+TEST(CompareSample, ColourRowsAreMeasuredAndWrittenAsTexturedGlbs) {
+  const Report& r = sample_report();
+  const ScanReport& s = r.scans[0];
+  EXPECT_EQ(s.colour, metrics::ColourSource::VertexColours);
+  const Variant* draco = find(s, "draco 11 bits + colours");
+  const Variant* pde = find(s, "pde 10 % + texture 1 mm q80");
+  ASSERT_TRUE(draco && pde);
+  for (const Variant* v : {draco, pde}) {
+    SCOPED_TRACE(v->name);
+    ASSERT_TRUE(v->colour && v->fidelity) << v->failure;
+    EXPECT_GT(v->colour->samples, 10'000U);
+    EXPECT_EQ(v->colour->uncoloured, 0U);
+    EXPECT_GT(v->colour->psnr_db, 40.0); // smooth skin tones: both close
+    EXPECT_LT(v->colour->mean_delta_e, 1.0);
+    EXPECT_GE(v->colour->p95_delta_e, v->colour->mean_delta_e);
+  }
+  // Draco's colours cost bytes over the geometry alone; the texture layer is its JPEG in the file.
+  EXPECT_EQ(draco->attribute_bytes, draco->bytes - find(s, "draco 11 bits")->bytes);
+  EXPECT_GT(draco->attribute_bytes, 0U);
+  EXPECT_EQ(draco->image_bytes, 0U);
+  const EncodeOutcome file = encode_request(sample_face(), {.profiles = {.ratio = 0.1},
+                                                            .texture = {.wanted = true, .texel_mm = 1.0}})
+                                 .value();
+  EXPECT_TRUE(pde->encoded == file.encoded.bytes);
+  EXPECT_EQ(pde->image_bytes, file.texture->bytes);
+  EXPECT_LT(pde->bytes, draco->bytes);
+  // The geometry rows are not measured on colour.
+  EXPECT_FALSE(find(s, "draco 11 bits")->colour);
+  EXPECT_FALSE(find(s, "pde 10 % lossy")->colour);
+  // A textured GLB of each colour row, and the documents list the measures.
+  ASSERT_EQ(s.textured.size(), 2U);
+  for (const TexturedGlb& t : s.textured) {
+    const Result<formats::LoadedMesh> back = formats::read_mesh(t.glb, t.file);
+    ASSERT_TRUE(back) << back.error().to_string();
+    EXPECT_TRUE(back->mesh.has_colors() || (back->mesh.material && back->mesh.material->base_color_image))
+        << t.file;
+  }
+  const std::string md = report_markdown(r);
+  EXPECT_NE(md.find("## Colour across scans"), std::string::npos);
+  EXPECT_NE(md.find("Colour (the scan's vertex colours; face mask)"), std::string::npos);
+  const nlohmann::json j = nlohmann::json::parse(report_json(r));
+  EXPECT_EQ(j["scans"][0]["colour"], "vertex colours");
+  EXPECT_EQ(j["scans"][0]["textured"].size(), 2U);
+  PDEFACE_GLTF_VALIDATOR_OR_SKIP(node, validator);
+  test::TempDir dir;
+  for (const TexturedGlb& t : s.textured) {
+    ASSERT_TRUE(write_file_atomic(dir / t.file, t.glb));
+    test::expect_valid_gltf(*node, *validator, dir / t.file);
+  }
+}
+
+// Without colour asked for (or on a scan without colour) there are no colour rows.
+TEST(Compare, NoColourRowsWhenNotAskedOrWithoutColour) {
+  Mesh plain = sample_face({.spacing_mm = 2.0});
+  plain.colors.clear();
+  CompareOptions o = sample_options();
+  o.draco_bits = {11};
+  o.budgets = {};
+  o.budgets_at_pde = false;
+  o.pde_budgets = {};
+  o.pde_lossless = false;
+  const ScanReport bare = compare_scan(plain, "plain", o).value();
+  EXPECT_EQ(bare.colour, metrics::ColourSource::None);
+  EXPECT_TRUE(bare.textured.empty());
+  EXPECT_FALSE(std::ranges::any_of(bare.variants, [](const Variant& v) { return v.colour.has_value(); }));
+  o.colour = false;
+  const ScanReport off = compare_scan(sample_face({.spacing_mm = 2.0}), "off", o).value();
+  EXPECT_EQ(off.variants.size(), bare.variants.size());
+  EXPECT_TRUE(off.textured.empty());
 }
 
 TEST(CompareSample, HeatMapGlbsPassTheValidator) {

@@ -22,6 +22,7 @@ struct CompareArgs {
   bool lossy_only = false;
   bool lossless_only = false;
   bool no_pde_budgets = false;
+  bool no_colour = false;
   bool files = false;
   bool quiet = false;
 };
@@ -75,6 +76,7 @@ int run_compare(CompareArgs args) {
   o.pde_lossless = !args.lossy_only;
   o.pde_lossy = !args.lossless_only;
   o.budgets_at_pde = !args.no_pde_budgets;
+  o.colour = !args.no_colour;
   o.keep_bytes = args.files;
   ProgressPrinter printer(args.quiet);
   const pipeline::Report report =
@@ -104,11 +106,20 @@ int run_compare(CompareArgs args) {
                    v->name, v->bytes, 100 * v->fidelity->coverage.share, v->fidelity->coverage.distance.mean,
                    v->fidelity->to_scan.mean);
   }
-  fmt::print(
-      "{} scan{} ({} failed) -> {}/report.md, report.html, report.json, report.csv, rd.svg and {} heat-map "
-      "GLB{}\n",
-      report.scans.size(), report.scans.size() == 1 ? "" : "s", report.failed(), args.out.string(),
-      *files - 5, *files == 6 ? "" : "s");
+  std::size_t heat = 0, textured = 0;
+  for (const pipeline::ScanReport& s : report.scans) {
+    heat += s.heat_maps.size();
+    textured += s.textured.size();
+  }
+  const std::size_t encoded = *files - 5 - heat - textured; // with --files
+  const auto count = [](std::size_t n, std::string_view what) {
+    return fmt::format("{} {}{}", n, what, n == 1 ? "" : "s");
+  };
+  fmt::print("{} ({} failed) -> {}/report.md, report.html, report.json, report.csv, rd.svg, {}{}{}\n",
+             count(report.scans.size(), "scan"), report.failed(), args.out.string(),
+             count(heat, "heat-map GLB"),
+             textured > 0 ? ", " + count(textured, "textured GLB") : std::string(),
+             encoded > 0 ? ", " + count(encoded, "encoded file") : std::string());
   return report.failed() > 0 ? kDataError : 0;
 }
 
@@ -158,6 +169,14 @@ void compare_command(CLI::App& app, int& status) {
                 "No decimate + Draco rows at the .pdef variants' sizes");
   cmd->add_option("--heat-max", args->options.heat_max_mm, "Heat maps: the error shown red, mm")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_flag(
+      "--no-colour", args->no_colour,
+      "No colour rows (Draco with the photograph, the .pdef with a texture layer) on scans that have "
+      "colour");
+  cmd->add_option("--draco-uv-bits", args->options.draco_uv_bits,
+                  "Colour rows: Draco's texture coordinate bits (as draco_encoder -qt)")
+      ->check(CLI::Range(1, 24))
       ->capture_default_str();
   cmd->add_flag("--crop-face", args->options.crop_face,
                 "Compress only the face (no ears, neck, shoulders or pedestal), as a .pdef holds it");

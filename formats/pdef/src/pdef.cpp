@@ -684,6 +684,32 @@ Result<Encoded> encode(const Face& face, const EncodeOptions& options) {
   return out;
 }
 
+Result<std::string> with_texture(std::string_view file, const Image& texture) {
+  const Result<ImageInfo> info = inspect_image(texture.bytes, "the texture");
+  if (!info || info->mime_type != "image/jpeg")
+    return invalid("the texture must be one JPEG image" +
+                   (info ? std::string() : ": " + info.error().message));
+  const Result<Container> container = read_container(file, "the file");
+  if (!container || container->residual)
+    return invalid("a texture layer goes into a version 2 file" +
+                   (container ? std::string() : ": " + container.error().message));
+  for (const Container::Part& part : container->parts)
+    if (part.tag == detail::kTagTexture) return invalid("the file has a texture layer already");
+  Writer section;
+  append_section(section, detail::kTagTexture,
+                 std::string(1, static_cast<char>(detail::kTextureJpeg)) + texture.bytes);
+  std::string out(file.substr(0, file.size() - detail::kChecksumBytes));
+  out += section.str();
+  const auto length = static_cast<std::uint32_t>(out.size() + detail::kChecksumBytes);
+  if (length > kMaxFileBytes) return invalid("the file with its texture is above the largest file");
+  for (int i = 0; i < 4; ++i)
+    out[6 + static_cast<std::size_t>(i)] = static_cast<char>(length >> (8 * i));
+  const std::uint32_t crc = detail::crc32(out);
+  for (int i = 0; i < 4; ++i)
+    out += static_cast<char>(crc >> (8 * i));
+  return out;
+}
+
 Result<Face> decode(std::string_view bytes, std::string_view source, const DecodeOptions& options) {
   Result<Container> container = read_container(bytes, source);
   if (!container) return std::move(container).error();

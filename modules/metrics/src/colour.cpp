@@ -104,7 +104,7 @@ double delta_e2000(const Eigen::Vector3d& lab1, const Eigen::Vector3d& lab2) {
     if (dhp > 180) dhp -= 360;
     if (dhp < -180) dhp += 360;
   }
-  const double dHp = 2 * sqrt(c1p * c2p) * sin(radians(dhp / 2));
+  const double delta_h = 2 * sqrt(c1p * c2p) * sin(radians(dhp / 2));
   const double lbp = 0.5 * (l1 + l2), cbp = 0.5 * (c1p + c2p);
   double hbp = h1p + h2p;
   if (c1p * c2p != 0) {
@@ -121,7 +121,7 @@ double delta_e2000(const Eigen::Vector3d& lab1, const Eigen::Vector3d& lab2) {
   const double sl = 1 + 0.015 * pow(lbp - 50, 2) / sqrt(20 + pow(lbp - 50, 2));
   const double sc = 1 + 0.045 * cbp, sh = 1 + 0.015 * cbp * t;
   const double rt = -sin(radians(2 * dtheta)) * rc;
-  return sqrt(pow(dlp / sl, 2) + pow(dcp / sc, 2) + pow(dHp / sh, 2) + rt * (dcp / sc) * (dHp / sh));
+  return sqrt(pow(dlp / sl, 2) + pow(dcp / sc, 2) + pow(delta_h / sh, 2) + rt * (dcp / sc) * (delta_h / sh));
 }
 
 ColourError colour_error(const SurfaceColour& reference, const SurfaceDistance& on_reference,

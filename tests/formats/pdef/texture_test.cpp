@@ -59,6 +59,25 @@ TEST(PdefTexture, TheImageIsKeptByteForByteAndSkippedOnRequest) {
   }
 }
 
+// Adding the layer to a written file gives the bytes of encoding the face with it; a file that has one,
+// a version 3 file, or an image that is not JPEG are refused.
+TEST(PdefTexture, WithTextureIsEncodingWithIt) {
+  Face plain = textured();
+  const Image texture = *plain.texture;
+  plain.texture.reset();
+  for (const bool lossless : {false, true}) {
+    const std::string curves = encode(plain, {.lossless = lossless}).value().bytes;
+    const Result<std::string> added = with_texture(curves, texture);
+    ASSERT_TRUE(added.ok()) << added.error().to_string();
+    EXPECT_TRUE(*added == encode(textured(), {.lossless = lossless}).value().bytes);
+    EXPECT_FALSE(with_texture(*added, texture)) << "a second layer";
+    EXPECT_FALSE(with_texture(curves, Image{"not a jpeg", "image/jpeg", {}}));
+    std::string v3 = curves;
+    v3[4] = 3;
+    EXPECT_FALSE(with_texture(with_checksum(v3), texture));
+  }
+}
+
 TEST(PdefTexture, TheMeshTakesTheGridsTextureCoordinatesAndTheImage) {
   const Face face = decode(encode(textured()).value().bytes).value();
   const Result<Mesh> mesh = to_mesh(face, Resolution{11, 21});

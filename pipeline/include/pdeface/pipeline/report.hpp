@@ -7,6 +7,7 @@
 #include "pdeface/core/file.hpp"
 #include "pdeface/core/mesh.hpp"
 #include "pdeface/core/result.hpp"
+#include "pdeface/metrics/colour.hpp"
 #include "pdeface/metrics/fidelity.hpp"
 #include "pdeface/pde/surface.hpp"
 
@@ -22,7 +23,9 @@
 namespace pdeface::pipeline {
 
 //! The families of variants, one series each in the plot.
-enum class Method { Raw, Gzip, Draco, DecimateDraco, Pde };
+//! `DracoColour`: Draco with the scan's texture coordinates (or vertex colours) and its photograph beside
+//! it; `PdeTexture`: the `.pdef` with a texture layer. Both are measured on colour too.
+enum class Method { Raw, Gzip, Draco, DecimateDraco, Pde, DracoColour, PdeTexture };
 [[nodiscard]] std::string_view to_string(Method method) noexcept;
 
 struct CompareOptions {
@@ -61,6 +64,24 @@ struct CompareOptions {
       0.10; //!< the PDE variant shown as a heat map (lossy), with decimate + Draco at its size
   int heat_draco_bits = 11; //!< and Draco at these bits
   bool keep_bytes = false;  //!< keep every variant's encoded bytes (`Variant::encoded`) to write them
+  //! Colour, where the scan has it (a photograph with texture coordinates, or vertex colours): Draco at
+  //! `colour_draco_bits` with the texture coordinates at `draco_uv_bits` (or the colours at
+  //! `draco_color_bits`) beside the photograph at each of `photo_scales` (1: the scan's own image file;
+  //! smaller: resized and encoded as JPEG at `photo_quality`), and the `.pdef` at `pde_budget_ratio` with a
+  //! texture layer at each of `textures`; each measured on the colours of the face mask (PSNR, ΔE₀₀), and
+  //! written as a textured GLB beside the heat maps.
+  bool colour = true;
+  int colour_draco_bits = 11;
+  int draco_uv_bits = 12;
+  int draco_color_bits = 8;
+  std::vector<double> photo_scales{1.0, 0.5, 0.25};
+  int photo_quality = 80;
+  struct Texture {
+    double texel_mm = 0.5;
+    int quality = 80;
+  };
+  std::vector<Texture> textures{{0.5, 80}, {0.5, 50}, {1.0, 80}, {1.0, 50}};
+  double colour_spacing_mm = 1.0; //!< the colour measure's sample spacing on the scan's face
   //! Threads per scan (0: the machine's cores); `compare_scans` shares the cores between the scans.
   unsigned threads = 0;
 };
@@ -81,8 +102,13 @@ struct Variant {
   std::size_t vertices = 0;  //!< of the decoded mesh
   std::size_t triangles = 0;
   std::optional<metrics::MeshFidelity> fidelity; //!< measured on the decoded mesh (canonical frame, mm)
-  std::string failure;                           //!< why there is no fidelity
-  std::string encoded;                           //!< the bytes, when `CompareOptions::keep_bytes`
+  //! Colour rows: of `bytes`, the image's (the photograph or the texture layer's JPEG) and the colour
+  //! attributes' (Draco: its bytes over the same mesh's without them)
+  std::size_t image_bytes = 0;
+  std::size_t attribute_bytes = 0;
+  std::optional<metrics::ColourError> colour; //!< the face mask's colours against the scan's
+  std::string failure;                        //!< why there is no fidelity
+  std::string encoded;                        //!< the bytes, when `CompareOptions::keep_bytes`
 };
 
 //! A heat-map GLB of one variant: its decoded mesh in the canonical frame (mm), every vertex coloured by
@@ -93,6 +119,13 @@ struct HeatMap {
   std::string glb;       //!< the bytes
   std::string front_svg; //!< an SVG `<image>` of it from the front, for the page (mm user units)
   double scale_mm = 1.0;
+};
+
+//! A colour variant's decoded mesh with its image, as a GLB (canonical frame, mm).
+struct TexturedGlb {
+  std::string variant; //!< `Variant::name`
+  std::string file;    //!< file name in the report folder
+  std::string glb;     //!< the bytes
 };
 
 //! One scan: its variants, or why it could not be compared.
@@ -106,6 +139,8 @@ struct ScanReport {
   std::size_t ply_bytes = 0;               //!< the raw binary PLY every ratio refers to
   std::vector<Variant> variants;
   std::vector<HeatMap> heat_maps;
+  std::vector<TexturedGlb> textured;                          //!< the colour variants' GLBs
+  metrics::ColourSource colour = metrics::ColourSource::None; //!< what colour the scan has
   std::string failure; //!< unreadable, no face ...: the scan has no variants
   double seconds = 0.0;
 };

@@ -122,6 +122,11 @@ struct Encoded {
 //! `NonFinite` for a NaN or infinite number.
 [[nodiscard]] Result<Encoded> encode(const Face& face, const EncodeOptions& options = {});
 
+//! A version 2 file that `encode` wrote, with `texture` added as its texture layer: the same bytes as
+//! encoding the face with it (the layer is the last section). Errors: `InvalidArgument` for a texture that
+//! is not one JPEG image, a file that is not a valid version 2 file or has a texture layer already.
+[[nodiscard]] Result<std::string> with_texture(std::string_view file, const Image& texture);
+
 //! What a decoder reads of a file.
 struct DecodeOptions {
   //! The texture layer's image bytes (its header checked); false: the section is skipped unread, as a
