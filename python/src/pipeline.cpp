@@ -173,6 +173,9 @@ struct LayerArgs {
   std::optional<std::size_t> size;
   std::optional<double> target_error;
   std::string target_measure = "p95";
+  bool texture = false;
+  double texel = 0.5;
+  int texture_quality = 80;
 };
 
 py::bytes encode(const Mesh& mesh, const CurveArgs& curves, const LayerArgs& layer, double max_error,
@@ -183,6 +186,9 @@ py::bytes encode(const Mesh& mesh, const CurveArgs& curves, const LayerArgs& lay
   if (layer.size && layer.target_error) throw py::value_error("give size or target_error, not both");
   if (layer.target_error && !(*layer.target_error > 0))
     throw py::value_error("target_error must be positive");
+  if (layer.texel < 0.05 || layer.texel > 5.0) throw py::value_error("texel must be within 0.05 and 5 mm");
+  if (layer.texture_quality < 1 || layer.texture_quality > 100)
+    throw py::value_error("texture_quality must be within 1 and 100");
   const pipeline::EncodeRequest request{
       .landmarks = landmark_source(landmarks),
       .profiles = curves.profiles(),
@@ -192,6 +198,7 @@ py::bytes encode(const Mesh& mesh, const CurveArgs& curves, const LayerArgs& lay
                    .target_error_mm = layer.target_error,
                    .target_measure = named<pipeline::TargetMeasure>(pipeline::kTargetMeasureNames,
                                                                     layer.target_measure, "target_measure")},
+      .texture = {.wanted = layer.texture, .texel_mm = layer.texel, .quality = layer.texture_quality},
       .store_landmarks = store_landmarks,
       .name = name,
       .source = source,
@@ -270,24 +277,27 @@ at the origin): ``canonical = scale * rotation @ p + translation``.)doc")
       [curve_args](const Mesh& mesh, double ratio, std::optional<std::size_t> points, std::size_t curves,
                    const std::string& scheme, std::optional<std::size_t> modes,
                    std::optional<double> smoothing, std::optional<std::size_t> size,
-                   std::optional<double> target_error, const std::string& target_measure, double max_error,
-                   bool lossless, const py::object& landmarks, bool store_landmarks, const std::string& name,
-                   bool force, const std::string& source) {
+                   std::optional<double> target_error, const std::string& target_measure, bool texture,
+                   double texel, int texture_quality, double max_error, bool lossless, const py::object& landmarks,
+                   bool store_landmarks, const std::string& name, bool force, const std::string& source) {
         return encode(mesh, curve_args(ratio, points, curves, scheme, modes, smoothing),
-                      LayerArgs{size, target_error, target_measure}, max_error, lossless, landmarks,
-                      store_landmarks, name, force, source);
+                      LayerArgs{size, target_error, target_measure, texture, texel, texture_quality}, max_error,
+                      lossless, landmarks, store_landmarks, name, force, source);
       },
       py::arg("mesh"), py::kw_only(), py::arg("ratio") = 0.10, py::arg("points") = py::none(),
       py::arg("curves") = 28, py::arg("scheme") = "spline", py::arg("modes") = py::none(),
       py::arg("smoothing") = py::none(), py::arg("size") = py::none(), py::arg("target_error") = py::none(),
-      py::arg("target_measure") = "p95", py::arg("max_error") = 0.05, py::arg("lossless") = false,
+      py::arg("target_measure") = "p95", py::arg("texture") = false, py::arg("texel") = 0.5,
+      py::arg("texture_quality") = 80, py::arg("max_error") = 0.05, py::arg("lossless") = false,
       py::arg("landmarks") = py::none(), py::arg("store_landmarks") = false, py::arg("name") = "",
       py::arg("force") = false, py::arg("source") = "mesh",
       R"doc(The scan as a .pdef file's bytes, those `pdeface encode` writes with the same options. With ``size``
 (bytes) or ``target_error`` (mm, of ``target_measure``: "mean", "p95" or "max") a residual layer follows
 the curves (version 3): the best error within the size, or the fewest bytes meeting the error; any prefix
-of the file decodes (``decode(data[:n])``). Raises pdeface.SelfCheckError when the decoded file is off the
-scan, unless ``force``.)doc");
+of the file decodes (``decode(data[:n])``). With ``texture`` a texture layer holds the scan's photograph (or
+vertex colours) over the face as one JPEG (``texel`` mm apart, ``texture_quality`` 1-100), and ``decode``
+gives a textured mesh. Raises pdeface.SelfCheckError when the decoded file is off the scan, unless
+``force``.)doc");
 }
 
 } // namespace pdeface::python

@@ -39,6 +39,18 @@ def test_a_residual_layer_within_its_size_and_every_prefix_decodes(faces, f18, c
         pdeface.encode(f18, size=4096, target_error=0.05)
 
 
+def test_a_texture_layer_gives_the_commands_file_and_a_textured_mesh(faces, cli, tmp_path):
+    james = pdeface.read(faces / "james.obj")
+    data = pdeface.encode(james, texture=True, texel=1.0)
+    cli("encode", faces / "james.obj", "-o", tmp_path / "james.pdef", "--texture", "--texel", "1")
+    assert data == (tmp_path / "james.pdef").read_bytes()
+    assert 8000 < len(data) < 20000
+    face = pdeface.decode(data, resolution=100)
+    assert face.texcoords is not None and face.texcoords.shape == (face.vertices.shape[0], 2)
+    with pytest.raises(ValueError, match="texture_quality"):
+        pdeface.encode(james, texture=True, texture_quality=0)
+
+
 def test_reconstruct_gives_the_commands_mesh(faces, f18, cli, tmp_path):
     mesh = pdeface.reconstruct(f18, ratio=0.2)
     cli("reconstruct", faces / "facefuns_f18.ply", "-o", tmp_path / "r.ply", "--ratio", "0.2")
