@@ -1,7 +1,10 @@
 // Rate and distortion of the `.pdef` residual layer on real scans, the measurements that chose its design
 // (third_party_notes/residual.md): `residual_rd [--spacing MM] [--step MM] SCAN...` prints, per scan and byte
 // budget, the file's size and the decoded surface's distances to the scan in the face mask (mm), as
-// `pdeface compare` measures them, with the layer's decode time.
+// `pdeface compare` measures them, with the layer's decode time. `--dump DIR` writes instead, per scan, the
+// measured field as a 16-bit PGM (the coder's finest step a unit, offset to be positive), its found mask as
+// an 8-bit PGM and a JSON of what our coder reaches at each stream size (the offsets' RMS error on the
+// found nodes), for tools/residual_codecs.py to set image codecs beside it at equal bytes.
 
 #include "pdeface/align/pipeline.hpp"
 #include "pdeface/formats/formats.hpp"
@@ -16,7 +19,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -26,9 +32,12 @@ int main(int argc, char** argv) {
   double spacing = 0.5, step = pdef::kDefaultResidualStep;
   std::vector<std::size_t> budgets{1024, 2048, 4096, 8192, 16384, 32768};
   std::vector<std::string> scans;
+  std::string dump;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--spacing" && i + 1 < argc)
+    if (a == "--dump" && i + 1 < argc)
+      dump = argv[++i];
+    else if (a == "--spacing" && i + 1 < argc)
       spacing = std::atof(argv[++i]);
     else if (a == "--step" && i + 1 < argc)
       step = std::atof(argv[++i]);
@@ -72,6 +81,41 @@ int main(int argc, char** argv) {
                coded->stream.size(), step, coded->planes, coded->levels,
                std::chrono::duration<double, std::milli>(t1 - t0).count(),
                std::chrono::duration<double, std::milli>(t2 - t1).count());
+    if (!dump.empty()) { // the field, its mask and our coder's RMS at each stream size
+      const pde::Displacement& field = measured.field;
+      double lo = 0;
+      for (double v : field.values)
+        lo = std::min(lo, v);
+      const std::string stem = (std::filesystem::path(dump) / std::filesystem::path(path).stem()).string();
+      std::ofstream pgm(stem + ".pgm", std::ios::binary), mask(stem + ".mask.pgm", std::ios::binary);
+      pgm << "P5\n" << field.width << " " << field.height << "\n65535\n";
+      mask << "P5\n" << field.width << " " << field.height << "\n255\n";
+      for (std::size_t p = 0; p < field.values.size(); ++p) {
+        const auto q = static_cast<long>(std::lround((field.values[p] - lo) / step));
+        const auto u = static_cast<unsigned>(std::clamp(q, 0L, 65535L));
+        pgm.put(static_cast<char>(u >> 8));
+        pgm.put(static_cast<char>(u & 0xff));
+        mask.put(static_cast<char>(measured.found[p] ? 255 : 0));
+      }
+      std::string ours;
+      for (const std::size_t bytes : {512UL, 1024UL, 2048UL, 4096UL, 8192UL, 16384UL, 32768UL}) {
+        const pde::Displacement back = pdef::decode_residual(*coded, bytes);
+        double sum = 0;
+        std::size_t n = 0;
+        for (std::size_t p = 0; p < field.values.size(); ++p)
+          if (measured.found[p]) {
+            sum += std::pow(back.values[p] - field.values[p], 2);
+            ++n;
+          }
+        ours += fmt::format("{}{{\"bytes\": {}, \"rms_mm\": {:.6g}}}", ours.empty() ? "" : ", ", bytes,
+                            std::sqrt(sum / static_cast<double>(std::max<std::size_t>(n, 1))));
+      }
+      std::ofstream(stem + ".json") << fmt::format(
+          "{{\"scan\": \"{}\", \"width\": {}, \"height\": {}, \"step_mm\": {}, \"offset_mm\": {}, "
+          "\"found\": {:.4f}, \"ours\": [{}]}}\n",
+          path, field.width, field.height, step, lo, measured.found_share(), ours);
+      continue;
+    }
     auto report = [&](std::string_view label, const std::string& bytes) {
       auto s = std::chrono::steady_clock::now();
       Result<pdef::Face> f = pdef::decode(bytes);
