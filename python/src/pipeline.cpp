@@ -278,11 +278,12 @@ at the origin): ``canonical = scale * rotation @ p + translation``.)doc")
                    const std::string& scheme, std::optional<std::size_t> modes,
                    std::optional<double> smoothing, std::optional<std::size_t> size,
                    std::optional<double> target_error, const std::string& target_measure, bool texture,
-                   double texel, int texture_quality, double max_error, bool lossless, const py::object& landmarks,
-                   bool store_landmarks, const std::string& name, bool force, const std::string& source) {
+                   double texel, int texture_quality, double max_error, bool lossless,
+                   const py::object& landmarks, bool store_landmarks, const std::string& name, bool force,
+                   const std::string& source) {
         return encode(mesh, curve_args(ratio, points, curves, scheme, modes, smoothing),
-                      LayerArgs{size, target_error, target_measure, texture, texel, texture_quality}, max_error,
-                      lossless, landmarks, store_landmarks, name, force, source);
+                      LayerArgs{size, target_error, target_measure, texture, texel, texture_quality},
+                      max_error, lossless, landmarks, store_landmarks, name, force, source);
       },
       py::arg("mesh"), py::kw_only(), py::arg("ratio") = 0.10, py::arg("points") = py::none(),
       py::arg("curves") = 28, py::arg("scheme") = "spline", py::arg("modes") = py::none(),
