@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <limits>
 
 namespace pdeface {
 namespace {
@@ -39,6 +40,28 @@ TEST(PointIndex, AgreesWithBruteForce) {
       ids.push_back(n.index);
     std::ranges::sort(ids);
     EXPECT_EQ(ids, brute_within(face.positions, q, 12.0));
+  }
+}
+
+// A search from a guess and a bounded one give what a full search gives, to the bit: the symmetry search
+// relies on it to stay bit-exact (docs/performance.md).
+TEST(PointIndex, SearchFromAGuessOrWithinABoundIsTheFullSearch) {
+  const Mesh face = sample_face({.spacing_mm = 3.0});
+  const PointIndex index(face.positions);
+  const std::size_t far_guess = face.vertex_count() - 1;
+  for (const Vec3& q : {Vec3(0, 0, 30), Vec3(-31.3, 27.1, -5), Vec3(70, -90, -40), Vec3(500, 0, 0)}) {
+    const auto full = index.nearest(q);
+    for (const std::size_t guess : {std::size_t{0}, far_guess, full.index}) {
+      const auto from = index.nearest_from(q, guess);
+      EXPECT_EQ(from.index, full.index);
+      EXPECT_EQ(from.distance, full.distance); // the same bits, whichever search found it
+    }
+    EXPECT_FALSE(index.nearest_within(q, full.distance).has_value()); // "nearer than": not as near
+    const auto within = index.nearest_within(q, full.distance * 1.01 + 1e-9);
+    ASSERT_TRUE(within.has_value());
+    EXPECT_EQ(within->index, full.index);
+    EXPECT_EQ(within->distance, full.distance);
+    EXPECT_EQ(index.nearest_within(q, std::numeric_limits<double>::infinity())->index, full.index);
   }
 }
 

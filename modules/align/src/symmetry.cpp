@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 
@@ -26,13 +27,48 @@ Plane plane_of(const Mirror& m, std::span<const Vec3> points) {
 }
 
 double mirror_rms(const Mirror& m, std::span<const Vec3> points, const PointIndex& index, double keep) {
-  std::vector<double> d;
-  d.reserve(points.size());
-  for (const Vec3& p : points)
-    d.push_back(index.nearest(m(p)).distance);
-  if (d.empty()) return std::numeric_limits<double>::infinity();
-  const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(keep * static_cast<double>(d.size())));
+  if (points.empty()) return std::numeric_limits<double>::infinity();
+  const std::size_t count = points.size();
+  const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(keep * static_cast<double>(count)));
+  // Only the n nearest distances count; a farther point need only be known to be farther, and the search
+  // for a far point (a wrong plane mirrors much of the scan into the air) ends early when it is bounded.
+  // So every 16th point is searched in full, the bound is a little over the share `keep` of their
+  // distances, and the rest are searched within it, those not found within it again with a bound four
+  // times larger, until n points are nearer than the bound: then no point left out can be among them.
+  constexpr std::size_t kStride = 16;
+  constexpr double kMargin = 1.5;
+  constexpr double kGrowth = 4.0;
+  constexpr int kBoundedPasses = 6; // then unbounded
+  std::vector<double> d(count, std::numeric_limits<double>::infinity());
+  std::vector<double> first;
+  std::vector<std::size_t> open;
+  for (std::size_t i = 0; i < count; ++i)
+    if (i % kStride == 0) {
+      d[i] = index.nearest(m(points[i])).distance;
+      first.push_back(d[i]);
+    } else {
+      open.push_back(i);
+    }
+  const auto at =
+      std::min(first.size() - 1, static_cast<std::size_t>(keep * static_cast<double>(first.size())));
+  std::ranges::nth_element(first, first.begin() + static_cast<std::ptrdiff_t>(at));
+  double bound = first[at] > 0.0 ? kMargin * first[at] : std::numeric_limits<double>::infinity();
+  for (int pass = 0; !open.empty(); ++pass) {
+    if (pass == kBoundedPasses) bound = std::numeric_limits<double>::infinity();
+    std::size_t kept = 0;
+    for (const std::size_t i : open)
+      if (const auto nn = index.nearest_within(m(points[i]), bound))
+        d[i] = nn->distance;
+      else
+        open[kept++] = i;
+    open.resize(kept);
+    if (std::ranges::count_if(d, [&](double x) { return x < bound; }) >= static_cast<std::ptrdiff_t>(n))
+      break;
+    bound *= kGrowth;
+  }
+  // The n smallest, summed smallest first (whatever order the selection left them in).
   std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(n - 1));
+  std::sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(n));
   double sum = 0.0;
   for (std::size_t i = 0; i < n; ++i)
     sum += d[i] * d[i];
@@ -46,10 +82,14 @@ Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all,
   Eigen::Matrix3Xd src(3, static_cast<Eigen::Index>(n)), dst(3, static_cast<Eigen::Index>(n));
   std::vector<std::pair<double, std::size_t>> order(n);
   std::vector<Vec3> moved(n), target(n);
+  // Each point's nearest neighbour in the last step: a step moves the points little, so the search starts
+  // from it (the same answer, found sooner).
+  std::vector<std::size_t> last(n);
   for (int iteration = 0; iteration < iterations; ++iteration) {
     for (std::size_t i = 0; i < n; ++i) {
       moved[i] = m(points[i]);
-      const auto nn = index.nearest(moved[i]);
+      const auto nn = iteration == 0 ? index.nearest(moved[i]) : index.nearest_from(moved[i], last[i]);
+      last[i] = nn.index;
       target[i] = all[nn.index];
       order[i] = {nn.distance, i};
     }

@@ -3,6 +3,7 @@
 #include <nanoflann.hpp>
 
 #include <cmath>
+#include <limits>
 
 namespace pdeface {
 
@@ -26,6 +27,28 @@ struct PointIndex::Tree {
   KdTree index;
 };
 
+namespace {
+
+// nanoflann's result-set interface for the one nearest point below a starting bound (squared): the same
+// decisions as its `KNNResultSet` with k = 1, which starts from an infinite bound.
+struct Closest {
+  double worst;
+  std::size_t index = std::numeric_limits<std::size_t>::max();
+  // NOLINTNEXTLINE(readability-identifier-naming): nanoflann's names
+  [[nodiscard]] double worstDist() const { return worst; }
+  [[nodiscard]] bool full() const { return true; }
+  // NOLINTNEXTLINE(readability-identifier-naming)
+  bool addPoint(double squared, std::size_t i) {
+    if (squared < worst) {
+      worst = squared;
+      index = i;
+    }
+    return true;
+  }
+};
+
+} // namespace
+
 PointIndex::PointIndex(std::span<const Vec3> points) : tree_(std::make_unique<Tree>(points)) {}
 PointIndex::~PointIndex() = default;
 PointIndex::PointIndex(PointIndex&&) noexcept = default;
@@ -38,6 +61,21 @@ PointIndex::Neighbour PointIndex::nearest(const Vec3& query) const {
   double squared = 0.0;
   tree_->index.knnSearch(query.data(), 1, &index, &squared);
   return {index, std::sqrt(squared)};
+}
+
+PointIndex::Neighbour PointIndex::nearest_from(const Vec3& query, std::size_t guess) const {
+  // The guess's squared distance as the tree measures it, so that the answer's distance is the same bits
+  // whichever search found it.
+  Closest closest{tree_->index.distance.evalMetric(query.data(), static_cast<unsigned>(guess), 3), guess};
+  tree_->index.findNeighbors(closest, query.data(), nanoflann::SearchParams());
+  return {closest.index, std::sqrt(closest.worst)};
+}
+
+std::optional<PointIndex::Neighbour> PointIndex::nearest_within(const Vec3& query, double bound) const {
+  Closest closest{bound * bound};
+  tree_->index.findNeighbors(closest, query.data(), nanoflann::SearchParams());
+  if (closest.index == std::numeric_limits<std::size_t>::max()) return std::nullopt;
+  return Neighbour{closest.index, std::sqrt(closest.worst)};
 }
 
 std::vector<PointIndex::Neighbour> PointIndex::nearest(const Vec3& query, std::size_t k) const {

@@ -5,6 +5,7 @@
 #include "pdeface/core/mesh.hpp"
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -27,6 +28,12 @@ public:
 
   //! The nearest point. \pre the index holds at least one point.
   [[nodiscard]] Neighbour nearest(const Vec3& query) const;
+  //! The nearest point, searched from a guess (the index of a point believed near the query): the answer
+  //! of `nearest` (but for a point exactly as near as the guess, which then wins), found sooner the
+  //! nearer the guess. \pre `guess < size()`.
+  [[nodiscard]] Neighbour nearest_from(const Vec3& query, std::size_t guess) const;
+  //! The nearest point if one lies nearer than `bound`, else none: a far query ends early.
+  [[nodiscard]] std::optional<Neighbour> nearest_within(const Vec3& query, double bound) const;
   //! The k nearest points, nearest first (fewer if the index holds fewer).
   [[nodiscard]] std::vector<Neighbour> nearest(const Vec3& query, std::size_t k) const;
   //! Every point within `radius`, nearest first.

@@ -1,0 +1,67 @@
+// The mirror-symmetry measures inside align (modules/align/src/symmetry.hpp) against their definitions:
+// the trimmed mirror RMS searches most points only within a bound (docs/performance.md), which must not
+// change what it measures.
+
+#include "symmetry.hpp"
+
+#include "pdeface/core/sample_face.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace pdeface::align::detail {
+namespace {
+
+// The definition: every point's distance to the nearest indexed point, the smallest share `keep` of them.
+double brute_mirror_rms(const Mirror& m, const std::vector<Vec3>& points, const std::vector<Vec3>& all,
+                        double keep) {
+  std::vector<double> d;
+  for (const Vec3& p : points) {
+    double best = std::numeric_limits<double>::infinity();
+    for (const Vec3& q : all)
+      best = std::min(best, (m(p) - q).norm());
+    d.push_back(best);
+  }
+  std::ranges::sort(d);
+  const auto n = std::max<std::size_t>(1, static_cast<std::size_t>(keep * static_cast<double>(d.size())));
+  double sum = 0.0;
+  for (std::size_t i = 0; i < n; ++i)
+    sum += d[i] * d[i];
+  return std::sqrt(sum / static_cast<double>(n));
+}
+
+TEST(Symmetry, TrimmedMirrorRmsIsItsDefinitionOnGoodAndBadPlanes) {
+  const Mesh face = sample_face({.spacing_mm = 3.0});
+  const PointIndex index(face.positions);
+  const std::vector<Vec3> probe = thin(face.positions, 300);
+  // The face's own plane (x = 0), planes a little and far off it, and one that mirrors the face into the
+  // air, where every search would run long unbounded.
+  const std::vector<Plane> planes{{Vec3::UnitX(), 0.0},
+                                  {Vec3(1.0, 0.1, 0.0).normalized(), 2.0},
+                                  {Vec3(0.3, 1.0, 0.2).normalized(), -10.0},
+                                  {Vec3::UnitZ(), 300.0}};
+  for (const Plane& plane : planes)
+    for (const double keep : {0.7, 0.8, 0.95, 1.0, 0.001}) {
+      const double rms = mirror_rms(mirror_of(plane), probe, index, keep);
+      const double expected = brute_mirror_rms(mirror_of(plane), probe, face.positions, keep);
+      EXPECT_NEAR(rms, expected, 1e-12 * std::max(1.0, expected))
+          << "plane offset " << plane.offset << ", keep " << keep;
+    }
+  // A few points far out among near ones, none of them among the points that set the first bound (every
+  // 16th): with keep 1 they count, however many times the bound must grow.
+  std::vector<Vec3> outliers = probe;
+  for (std::size_t i = 5; i < outliers.size(); i += 50)
+    outliers[i] = Vec3(1e7, 0.0, 0.0);
+  for (const double keep : {1.0, 0.99, 0.7}) {
+    const double rms = mirror_rms(mirror_of(planes[0]), outliers, index, keep);
+    const double expected = brute_mirror_rms(mirror_of(planes[0]), outliers, face.positions, keep);
+    EXPECT_NEAR(rms, expected, 1e-12 * std::max(1.0, expected)) << "outliers, keep " << keep;
+  }
+  EXPECT_TRUE(std::isinf(mirror_rms(mirror_of(planes[0]), {}, index, 0.7)));
+}
+
+} // namespace
+} // namespace pdeface::align::detail
