@@ -38,7 +38,9 @@ Result<ReconstructOutcome> reconstruct_request(const Mesh& scan, const Reconstru
   const CanonicalScan canonical = canonical_scan(scan, *alignment);
   Result<Reconstruction> made = reconstruct(canonical, request.options, request.source);
   if (!made) return made.error();
-  ReconstructOutcome out{*alignment, *std::move(made), std::nullopt, {}, 1.0 / canonical.frame.scale, {}, {}};
+  ReconstructOutcome out{.alignment = *alignment,
+                         .reconstruction = *std::move(made),
+                         .scan_units_per_mm = 1.0 / canonical.frame.scale};
   const Reconstruction& r = out.reconstruction;
   if (Result<metrics::Fidelity> f = metrics::measure_fidelity(canonical.mesh, r.profiles, r.canonical))
     out.fidelity = *f;

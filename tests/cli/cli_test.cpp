@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -245,6 +246,17 @@ TEST_F(Cli, ReconstructWritesTheSurfaceInTheScansUnits) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(lines(r.out), 6U) << r.out;
   EXPECT_NE(r.out.find(" m in the scan's units"), std::string::npos) << r.out;
+  // The same distances in metres: a thousandth of the millimetres (printed to 3 decimals and to 3
+  // significant digits).
+  double mean_mm = 0.0, mean_m = 0.0;
+  const std::size_t at_mm = r.out.find("surface distance mean ");
+  const std::size_t at_m = r.out.find("= mean ");
+  ASSERT_NE(at_mm, std::string::npos) << r.out;
+  ASSERT_NE(at_m, std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at_mm, "surface distance mean %lf", &mean_mm), 1) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at_m, "= mean %lf", &mean_m), 1) << r.out;
+  EXPECT_GT(mean_mm, 0.0);
+  EXPECT_NEAR(mean_m, mean_mm / 1000.0, 0.006 * mean_mm / 1000.0 + 0.0005 / 1000.0) << r.out;
   EXPECT_NE(r.out.find("self-check on the face: mean distance"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("coverage of the face"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("28 curves"), std::string::npos) << r.out;
