@@ -465,7 +465,7 @@ Result<ScanReport> compare_scan(const Mesh& scan, std::string_view name, const C
   if (!geometry) return std::move(geometry).error();
 
   Measurer measurer(*prepared, options, tick);
-  detail::PdeFiles pde(scan, prepared->alignment, prepared->canonical, options.scheme, std::string(name));
+  detail::PdeFiles pde(prepared->alignment, prepared->canonical, options.scheme, std::string(name));
   std::vector<Task> tasks = encoding_tasks(*geometry, pde, options);
   measurer.run(tasks);
   share_raw_fidelity(tasks, measurer);

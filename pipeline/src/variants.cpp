@@ -292,10 +292,9 @@ struct PdeFiles::AtRatio {
   std::map<double, std::unique_ptr<SampledTexels>> texels;
 };
 
-PdeFiles::PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
-                   pde::Scheme scheme, std::string source)
-    : scan_(scan), alignment_(alignment), canonical_(canonical), scheme_(scheme), source_(std::move(source)) {
-}
+PdeFiles::PdeFiles(const align::Alignment& alignment, const CanonicalScan& canonical, pde::Scheme scheme,
+                   std::string source)
+    : alignment_(alignment), canonical_(canonical), scheme_(scheme), source_(std::move(source)) {}
 
 PdeFiles::~PdeFiles() = default;
 

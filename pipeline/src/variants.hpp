@@ -81,12 +81,12 @@ struct Decimated {
 //! and decoding timed apart. What the files share is made once: the slicing and the surface at each ratio
 //! (for its lossy and lossless files), the lossy file under the files with a residual layer, and each
 //! residual grid (one for every size it serves); a file's `encode_ms` counts every step it took, shared or
-//! not, as if it had been made alone. Thread-safe; `scan`, `alignment` and `canonical` (the scan in the
+//! not, as if it had been made alone. Thread-safe; `alignment` and `canonical` (the scan in the
 //! canonical frame, `canonical_scan`) must outlive it.
 class PdeFiles {
 public:
-  PdeFiles(const Mesh& scan, const align::Alignment& alignment, const CanonicalScan& canonical,
-           pde::Scheme scheme, std::string source);
+  PdeFiles(const align::Alignment& alignment, const CanonicalScan& canonical, pde::Scheme scheme,
+           std::string source);
   PdeFiles(const PdeFiles&) = delete;
   PdeFiles& operator=(const PdeFiles&) = delete;
   ~PdeFiles();
@@ -101,7 +101,6 @@ private:
                                       const TextureRequest& texture = {}) const;
   AtRatio& at(double ratio);
 
-  const Mesh& scan_;
   const align::Alignment& alignment_;
   const CanonicalScan& canonical_;
   pde::Scheme scheme_;

@@ -61,7 +61,7 @@ TEST_F(Cli, NamesThatAreNotUtf8AreWrittenAsUtf8) {
   std::filesystem::copy_file(work_ / "named.obj", work_ / (bad + ".obj"));
   r = run({"info", "--json", path(bad + ".obj")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NO_THROW((void)nlohmann::json::parse(r.out)) << r.out;
+  EXPECT_TRUE(nlohmann::json::accept(r.out)) << r.out;
 
   ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0);
   r = run({"encode", path("face.ply"), "-o", path("face.pdef"), "--name", "x\xffy\nz"});

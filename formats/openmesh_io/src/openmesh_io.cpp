@@ -167,6 +167,14 @@ OpenMesh::Vec4uc to_bytes(const Vec4f& c) {
 // One layer of these per element kind, over `Base`.
 template <class Handle, class Base> class Uncoloured : public Base {
 public:
+  // The other element kinds' overloads stay visible beside these.
+  using Base::color;
+  using Base::colorA;
+  using Base::colorAf;
+  using Base::colorAi;
+  using Base::colorf;
+  using Base::colori;
+  using Base::status;
   OpenMesh::Vec3uc color(Handle) const override { return OpenMesh::Vec3uc(0, 0, 0); }
   OpenMesh::Vec4uc colorA(Handle) const override { return OpenMesh::Vec4uc(0, 0, 0, 0); }
   OpenMesh::Vec3ui colori(Handle) const override { return OpenMesh::Vec3ui(0, 0, 0); }
@@ -176,8 +184,20 @@ public:
   StatusInfo status(Handle) const override { return {}; }
 };
 
-class MeshExporter final : public Uncoloured<EdgeHandle, Uncoloured<FaceHandle, OpenMesh::IO::BaseExporter>> {
+using UncolouredExporter = Uncoloured<EdgeHandle, Uncoloured<FaceHandle, OpenMesh::IO::BaseExporter>>;
+
+class MeshExporter final : public UncolouredExporter {
 public:
+  using UncolouredExporter::color;
+  using UncolouredExporter::colorA;
+  using UncolouredExporter::colorAf;
+  using UncolouredExporter::colorAi;
+  using UncolouredExporter::colorf;
+  using UncolouredExporter::colori;
+  using UncolouredExporter::normal;
+  using UncolouredExporter::normald;
+  using UncolouredExporter::status;
+  using UncolouredExporter::texcoord;
   MeshExporter(const Mesh& mesh, const OpenMeshWrite& how) : mesh_(mesh), how_(how) {}
 
   // Positions leave as float32 whatever the writer would do with doubles: the usual PLY/STL/OFF precision.
