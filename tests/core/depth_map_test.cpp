@@ -2,9 +2,12 @@
 // than the grid costs at most the grid, coordinates beyond int's range are outside it.
 #include "pdeface/core/depth_map.hpp"
 
+#include "pdeface/core/sample_face.hpp"
 #include "pdeface_test.hpp"
 
 #include <cfloat>
+#include <cmath>
+#include <limits>
 #include <vector>
 
 namespace pdeface {
@@ -27,6 +30,52 @@ TEST(DepthMap, PointsAndTrianglesFarOutsideTheGridAreIgnored) {
   EXPECT_FALSE(map.at(0.0, 0.0));
   EXPECT_FALSE(map.at(1e300, 0.0));
   EXPECT_FALSE(map.relief(-1e300, 0.0, 1e300));
+}
+
+// A mesh's depth map the plain way: each triangle's cells from its own extreme coordinates (its box),
+// each cell of the box whose centre it holds (barycentric coordinates above -1e-9) given the front-most
+// depth. The map finds the boxes from bounds per vertex; it must be the same bits.
+TEST(DepthMap, AMeshsMapIsEachTrianglesBoxTriedCellByCell) {
+  const Mesh face = sample_face({.spacing_mm = 7.0});
+  for (const double cell : {2.5, 1.3, 0.7}) {
+    DepthMap map(-80.3, 79.1, -100.7, 90.2, cell);
+    map.rasterise(face.positions, face.triangles, 1.0);
+    Eigen::MatrixXd plain = Eigen::MatrixXd::Constant(map.rows(), map.cols(), std::nan(""));
+    for (const Triangle& t : face.triangles) {
+      const Vec3 &a = face.positions[t[0]], &b = face.positions[t[1]], &c = face.positions[t[2]];
+      const double area = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
+      if (!(std::abs(area) >= 1e-12)) continue;
+      const auto first = [&](double v, double origin) {
+        return static_cast<int>(std::ceil((v - origin) / cell));
+      };
+      const auto last = [&](double v, double origin) {
+        return static_cast<int>(std::floor((v - origin) / cell));
+      };
+      const int c0 = std::max(0, first(std::min({a.x(), b.x(), c.x()}), -80.3));
+      const int c1 = std::min(map.cols() - 1, last(std::max({a.x(), b.x(), c.x()}), -80.3));
+      const int r0 = std::max(0, first(std::min({a.y(), b.y(), c.y()}), -100.7));
+      const int r1 = std::min(map.rows() - 1, last(std::max({a.y(), b.y(), c.y()}), -100.7));
+      for (int r = r0; r <= r1; ++r)
+        for (int col = c0; col <= c1; ++col) {
+          const double x = map.x_of(col), y = map.y_of(r);
+          const double wa = ((b.x() - x) * (c.y() - y) - (c.x() - x) * (b.y() - y)) / area;
+          const double wb = ((c.x() - x) * (a.y() - y) - (a.x() - x) * (c.y() - y)) / area;
+          const double wc = 1.0 - wa - wb;
+          if (wa < -1e-9 || wb < -1e-9 || wc < -1e-9) continue;
+          const double z = wa * a.z() + wb * b.z() + wc * c.z();
+          if (std::isnan(plain(r, col)) || z > plain(r, col)) plain(r, col) = z;
+        }
+    }
+    std::size_t covered = 0;
+    for (int r = 0; r < map.rows(); ++r)
+      for (int col = 0; col < map.cols(); ++col) {
+        ASSERT_EQ(map.known(r, col), !std::isnan(plain(r, col))) << "cell " << r << ", " << col;
+        if (!map.known(r, col)) continue;
+        ++covered;
+        ASSERT_EQ(map.z(r, col), plain(r, col)) << "cell " << r << ", " << col;
+      }
+    EXPECT_GT(covered, 1000U) << "cell " << cell;
+  }
 }
 
 TEST(DepthMap, ABlurWiderThanTheGridIsTheMean) {

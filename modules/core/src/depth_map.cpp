@@ -64,18 +64,34 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
         if (weight(r, c) > 0.0) z_(r, c) = sum(r, c) / weight(r, c);
     return;
   }
+  // The cells whose centres a triangle may cover: those between its vertices' extreme columns and rows.
+  // Each vertex's bounds are found once (the first column and row at or after it, the last at or before
+  // it): (v - origin) / cell, ceil, floor and the clamp are all monotone, so the extreme of the vertices'
+  // bounds is the bound of their extreme, the same cells as computing them per triangle. Most triangles
+  // of a scan cover no cell centre and end there.
+  struct Bounds {
+    int col_from, col_to, row_from, row_to;
+  };
+  std::vector<Bounds> bounds(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const double col = (p[i].x() - x0_) / cell_, row = (p[i].y() - y0_) / cell_;
+    bounds[i] = {clamped(std::ceil(col), cols()), clamped(std::floor(col), cols()),
+                 clamped(std::ceil(row), rows()), clamped(std::floor(row), rows())};
+  }
   for (const Triangle& t : triangles) {
+    const Bounds& ba = bounds[t[0]];
+    const Bounds& bb = bounds[t[1]];
+    const Bounds& bc = bounds[t[2]];
+    const int cmin = std::max(0, std::min({ba.col_from, bb.col_from, bc.col_from}));
+    const int cmax = std::min(cols() - 1, std::max({ba.col_to, bb.col_to, bc.col_to}));
+    const int rmin = std::max(0, std::min({ba.row_from, bb.row_from, bc.row_from}));
+    const int rmax = std::min(rows() - 1, std::max({ba.row_to, bb.row_to, bc.row_to}));
+    if (cmin > cmax || rmin > rmax) continue;
     const Vec3& a = p[t[0]];
     const Vec3& b = p[t[1]];
     const Vec3& c = p[t[2]];
     const double area = (b.x() - a.x()) * (c.y() - a.y()) - (c.x() - a.x()) * (b.y() - a.y());
     if (!(std::abs(area) >= 1e-12) || !std::isfinite(area)) continue; // seen edge-on, or beyond a double
-    const int cmin = std::max(0, clamped(std::ceil((std::min({a.x(), b.x(), c.x()}) - x0_) / cell_), cols()));
-    const int cmax =
-        std::min(cols() - 1, clamped(std::floor((std::max({a.x(), b.x(), c.x()}) - x0_) / cell_), cols()));
-    const int rmin = std::max(0, clamped(std::ceil((std::min({a.y(), b.y(), c.y()}) - y0_) / cell_), rows()));
-    const int rmax =
-        std::min(rows() - 1, clamped(std::floor((std::max({a.y(), b.y(), c.y()}) - y0_) / cell_), rows()));
     for (int r = rmin; r <= rmax; ++r) {
       const double y = y_of(r);
       for (int col = cmin; col <= cmax; ++col) {
