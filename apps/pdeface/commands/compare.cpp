@@ -3,6 +3,7 @@
 
 #include "common.hpp"
 
+#include "pdeface/core/text.hpp"
 #include "pdeface/pipeline/report.hpp"
 
 #include <fmt/format.h>
@@ -49,8 +50,8 @@ public:
       const auto left = static_cast<int>(elapsed * (1.0 - share) / share);
       eta = fmt::format("{}:{:02}", left / 60, left % 60);
     }
-    std::string what = p.scan + ": " + p.what();
-    if (what.size() > 40) what = what.substr(0, 39) + "…";
+    // Cut at a character boundary: a scan's name may be any UTF-8.
+    const std::string what = excerpt(p.scan + ": " + p.what(), 40);
     fmt::print(stderr, "\r[{}{}] {}/{} scans{} {:3.0f} %  ETA {}  {:<41}", std::string(filled, '#'),
                std::string(30 - filled, ' '), p.scans_done, p.scans_total,
                p.scans_failed ? fmt::format(" ({} failed)", p.scans_failed) : std::string(), 100.0 * share,
