@@ -194,10 +194,7 @@ public:
   using UncolouredExporter::colorAi;
   using UncolouredExporter::colorf;
   using UncolouredExporter::colori;
-  using UncolouredExporter::normal;
-  using UncolouredExporter::normald;
   using UncolouredExporter::status;
-  using UncolouredExporter::texcoord;
   MeshExporter(const Mesh& mesh, const OpenMeshWrite& how) : mesh_(mesh), how_(how) {}
 
   // Positions leave as float32 whatever the writer would do with doubles: the usual PLY/STL/OFF precision.

@@ -55,13 +55,13 @@ double mirror_rms(const Mirror& m, std::span<const Vec3> points, const PointInde
   double bound = first[at] > 0.0 ? kMargin * first[at] : std::numeric_limits<double>::infinity();
   for (int pass = 0; !open.empty(); ++pass) {
     if (pass == kBoundedPasses) bound = std::numeric_limits<double>::infinity();
-    std::size_t kept = 0;
+    std::size_t still_open = 0;
     for (const std::size_t i : open)
       if (const auto nn = index.nearest_within(m(points[i]), bound))
         d[i] = nn->distance;
       else
-        open[kept++] = i;
-    open.resize(kept);
+        open[still_open++] = i;
+    open.resize(still_open);
     if (std::ranges::count_if(d, [&](double x) { return x < bound; }) >= static_cast<std::ptrdiff_t>(n))
       break;
     bound *= kGrowth;
