@@ -3,6 +3,7 @@
 #include "pdeface/residual/measure.hpp"
 
 #include "pdeface/metrics/surface_distance.hpp"
+#include "pdeface/residual/ray_cast.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -83,11 +84,23 @@ Measured measure(const pde::Surface& surface, const Mesh& scan, std::size_t widt
   const metrics::SurfaceDistance distance(scan);
   Measured out{{width, height, std::vector<double>(width * height, 0.0)},
                std::vector<std::uint8_t>(width * height, 0)};
-  for (std::size_t p = 0; p < grid.points.size(); ++p) {
-    const Hit hit = along_normal(distance, scan, grid.points[p], grid.normals[p], options);
-    if (hit.found) {
-      out.field.values[p] = hit.offset;
-      out.found[p] = 1;
+  if (scan.is_point_cloud()) {
+    for (std::size_t p = 0; p < grid.points.size(); ++p) {
+      const Hit hit = along_normal(distance, scan, grid.points[p], grid.normals[p], options);
+      if (hit.found) {
+        out.field.values[p] = hit.offset;
+        out.found[p] = 1;
+      }
+    }
+  } else { // a mesh: where the normal line crosses its triangles, nearest to the surface
+    const RayCaster caster(scan);
+    for (std::size_t p = 0; p < grid.points.size(); ++p) {
+      if (grid.normals[p].isZero()) continue;
+      if (const std::optional<RayHit> hit =
+              caster.nearest(grid.points[p], grid.normals[p], options.max_offset_mm)) {
+        out.field.values[p] = hit->t;
+        out.found[p] = 1;
+      }
     }
   }
   fill(out.field, out.found);
