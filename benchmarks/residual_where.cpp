@@ -5,7 +5,9 @@
 // sample over it, blue 0 … red --scale mm; grey: the scan's front, black: nothing) and
 // OUT/<scan>_<budget>_N.svg (sections through the N-th worst cluster: across x = const (y–z) and y = const
 // (x–z); black the scan, red the decoded mesh, grey the curves' surface, its normal lines at the nodes near
-// the plane).
+// the plane, green where they found the scan) and OUT/<scan>_<budget>_trim.pgm (the layer's cells, v up:
+// black trimmed, white kept, grey kept with a corner whose line found no scan). It also prints the
+// yardstick's figures both ways (mesh → scan, mask → mesh). `--spacing MM` sets the layer's grid.
 
 #include "pdeface/align/pipeline.hpp"
 #include "pdeface/formats/formats.hpp"
@@ -26,6 +28,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -75,18 +78,20 @@ std::string polylines(const Mesh& mesh, const Plane& plane, int a, int b, const 
 
 int main(int argc, char** argv) {
   if (argc < 4) {
-    fmt::print("usage: residual_where OUT SCAN BUDGET... [--scale MM]\n");
+    fmt::print("usage: residual_where OUT SCAN BUDGET... [--scale MM] [--spacing MM]\n");
     return 2;
   }
   const std::filesystem::path out_dir = argv[1];
   std::filesystem::create_directories(out_dir);
   const std::string path = argv[2];
   std::vector<std::size_t> budgets;
-  double scale = 1.0;
+  double scale = 1.0, spacing = 0.0;
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--scale" && i + 1 < argc)
       scale = std::atof(argv[++i]);
+    else if (a == "--spacing" && i + 1 < argc)
+      spacing = std::atof(argv[++i]);
     else
       budgets.push_back(std::stoul(a));
   }
@@ -103,27 +108,53 @@ int main(int argc, char** argv) {
   const metrics::FrontView view(scan, -hw, hw, mask.centre_y - mask.half_height - 0.5,
                                 mask.centre_y + mask.half_height + 0.5, 0.5);
   const metrics::SurfaceDistance to_scan(scan);
+  const std::optional<metrics::FaceYardstick> yardstick =
+      metrics::FaceYardstick::make(scan, *profiles).value();
   const std::string stem = std::filesystem::path(path).stem().string();
   for (const std::size_t budget : budgets) {
     pipeline::EncodeRequest request;
     request.check.reset();
     request.residual.size_bytes = budget;
+    if (spacing > 0) request.residual.spacing_mm = spacing;
     Result<pipeline::EncodeOutcome> made = pipeline::encode_aligned(raw, *alignment, request);
     if (!made) {
       fmt::print("{}\n", made.error().to_string());
       return 1;
     }
+    if (made->residual)
+      fmt::print("  layer {} B, trim {} B whole ({:.2f} % of the cells), found {:.2f} %\n",
+                 made->residual->layer_bytes, made->residual->trim_bytes, 100 * made->residual->trimmed_share,
+                 100 * made->residual->found_share);
     Result<pdef::Face> face = pdef::decode(made->encoded.bytes);
     Result<Mesh> decoded = pdef::to_mesh(*face);
-    const Mesh mesh = align::to_canonical(*decoded, canonical.frame);
+    Mesh mesh = align::to_canonical(*decoded, canonical.frame);
     Result<pde::Surface> surface = pdef::surface_of(*face);
     std::vector<std::uint8_t> found;
     std::size_t gw = 0, gh = 0;
     if (pdef::has_offsets(*face)) {
       gw = face->residual->field.width;
       gh = face->residual->field.height;
-      found = residual::measure(*surface, scan, gw, gh).found;
+      const residual::Measured measured = residual::measure(*surface, scan, gw, gh);
+      found = measured.found;
     }
+    {
+      const metrics::MeshFidelity f = yardstick->measure(mesh).value();
+      fmt::print("  yardstick: mesh -> scan {:.4f} / {:.4f} / {:.3f}; mask -> mesh {:.4f} / {:.4f} / {:.3f}, "
+                 "coverage {:.2f} %\n",
+                 f.to_scan.mean, f.to_scan.p95, f.to_scan.max, f.coverage.distance.mean,
+                 f.coverage.distance.p95, f.coverage.distance.max, 100 * f.coverage.share);
+    }
+    if (pdef::has_offsets(*face) && !face->residual->trimmed.empty()) { // the trim as an image, v up
+      std::ofstream pgm(out_dir / fmt::format("{}_{}_trim.pgm", stem, budget), std::ios::binary);
+      pgm << "P5\n" << gw - 1 << " " << gh - 1 << "\n255\n";
+      for (std::size_t k = gh - 1; k-- > 0;)
+        for (std::size_t i = 0; i + 1 < gw; ++i)
+          pgm.put(static_cast<char>(
+              face->residual->trimmed[k * (gw - 1) + i] ? 0 : (found[k * gw + i] ? 255 : 160)));
+    }
+    pdef::Face untrimmed = *face;
+    if (untrimmed.residual) untrimmed.residual->trimmed.clear();
+    const Mesh grid_mesh = align::to_canonical(*pdef::to_mesh(untrimmed), canonical.frame);
     pdef::Face bare = *face;
     bare.residual.reset();
     const Mesh base = align::to_canonical(
@@ -158,8 +189,8 @@ int main(int argc, char** argv) {
       // The node of the layer's grid nearest to it (the mesh is the grid, vertex = node).
       std::size_t node = 0;
       double best = 1e300;
-      for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
-        if (const double e = (mesh.positions[v] - s.p).squaredNorm(); e < best) best = e, node = v;
+      for (std::size_t v = 0; v < grid_mesh.vertex_count(); ++v)
+        if (const double e = (grid_mesh.positions[v] - s.p).squaredNorm(); e < best) best = e, node = v;
       const int f = found.empty() ? -1 : found[node];
       std::size_t found_near = 0, near_count = 0;
       if (gw)

@@ -34,6 +34,10 @@ void one(std::string_view bytes) {
   if (face->residual && !face->residual->field.empty() &&
       face->residual->field.values.size() != face->residual->field.width * face->residual->field.height)
     throw std::logic_error("a residual layer's offsets do not fill its grid");
+  if (face->residual && !face->residual->trimmed.empty() &&
+      face->residual->trimmed.size() !=
+          (face->residual->field.width - 1) * (face->residual->field.height - 1))
+    throw std::logic_error("a residual layer's trim does not cover its grid's cells");
   // Encoding it again with an error its own grid satisfies: a file the encoder wrote keeps its grid and
   // decodes to the same values (tests/formats/pdef/golden_test.cpp); any other face (a hostile file whose
   // values the encoder would never write, e.g. heights' residuals far off their anchors) is encoded within

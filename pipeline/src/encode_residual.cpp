@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 
 namespace pdeface::pipeline {
@@ -73,6 +74,12 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
     const residual::Measured measured = residual::measure(*surface, scan.mesh, grid.width, grid.height);
     Result<pdef::CodedResidual> coded = pdef::code_residual(measured.field);
     if (!coded) return std::move(coded).error();
+    // Cells with no scan under them: off it by a fifth of the grid's spacing (what the grid resolves).
+    const std::vector<std::uint8_t> trimmed =
+        residual::trim(*surface, scan.mesh, measured, {.off_scan_mm = own.spacing_mm / 5});
+    coded->trim = pdef::code_trim(trimmed, grid.width, grid.height);
+    own.trimmed_share =
+        static_cast<double>(std::ranges::count(trimmed, 1)) / static_cast<double>(trimmed.size());
     own.width = grid.width;
     own.height = grid.height;
     own.found_share = measured.found_share();
@@ -86,10 +93,20 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
   out.height = made_grid->height;
   out.found_share = made_grid->found_share;
   out.whole_stream = coded->stream.size();
-  const std::size_t smallest = curves.size() + pdef::residual_header(*coded, 0).size();
-  const std::size_t largest =
-      curves.size() + pdef::residual_header(*coded, coded->stream.size()).size() + coded->stream.size();
-  auto file_of = [&](std::size_t bytes) { return pdef::with_residual(curves, *coded, bytes); };
+  // The trim whole when it takes at most a quarter of the layer, else none: the first bytes of the offsets
+  // remove more error than a trim cut short (docs/compare.md, "The residual layer").
+  const auto trim_for = [&](std::size_t bytes) {
+    const std::size_t layer = bytes > curves.size() ? bytes - curves.size() : 0;
+    return 4 * coded->trim.size() <= layer ? coded->trim.size() : 0;
+  };
+  const std::size_t smallest = curves.size() + pdef::residual_header(*coded, 0, 0).size();
+  const std::size_t largest = curves.size() + pdef::residual_header(*coded, coded->stream.size()).size() +
+                              coded->trim.size() + coded->stream.size();
+  std::size_t trim_bytes = 0; // in the file made last
+  auto file_of = [&](std::size_t bytes) {
+    trim_bytes = trim_for(bytes);
+    return pdef::with_residual(curves, *coded, bytes, {.trim_bytes = trim_bytes});
+  };
   std::string file;
   if (request.size_bytes) {
     if (*request.size_bytes < smallest) { // room for the curves, not the layer's header: curves alone
@@ -144,6 +161,8 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
     out.measured = *best;
   }
   out.layer_bytes = file.size() - curves.size();
+  out.trim_bytes = trim_bytes;
+  out.trimmed_share = out.trim_bytes > 0 ? made_grid->trimmed_share : 0.0;
   outcome.encoded.bytes = std::move(file);
   return out;
 }

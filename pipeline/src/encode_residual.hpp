@@ -26,6 +26,7 @@ struct ResidualGrids {
     double spacing_mm = 0.0; //!< as made: the spacing asked, coarsened when the grid had too many nodes
     std::size_t width = 0, height = 0;
     double found_share = 0.0;
+    double trimmed_share = 0.0; //!< of the grid's cells
     pdef::CodedResidual coded;
     double made_ms = 0.0; //!< what measuring and coding it took
   };

@@ -6,8 +6,9 @@ decoder's (PdefSpec.AnIndependentReaderAgrees). Lossless files need zstd and are
 
 A version 3 file (or any prefix of one that holds its curves) then has its residual layer: a line
 "residual width W height H levels … step Δ(mm) planes P stream S held n complete 0|1" and H lines of W
-offsets (mm, 17 digits), line k the nodes (0 … W−1, k); or "residual none: …" when the file is cut inside
-the layer's header (PdefSpec.AnIndependentReaderReadsTheResidualLayer).
+offsets (mm, 17 digits), line k the nodes (0 … W−1, k), then "trim bytes T held n complete 0|1 cells c"
+and a line of the c trimmed cells' indices k·(W − 1) + i (empty without any); or "residual none: …" when
+the file is cut inside the layer's header (PdefSpec.AnIndependentReaderReadsTheResidualLayer).
 
 Usage: python3 pdef_reader.py FILE.pdef
 """
@@ -444,15 +445,91 @@ def inverse_wavelet(c, W, H, levels):
     return c
 
 
+def decode_trim(stream, across, down):
+    """The trimmed cells (a set of indices k·across + i) that the trim stream's bytes held determine."""
+    rc = RangeDecoder(stream)
+    rc.p = [1024] * 72
+    top = 0
+    while 2 ** top < max(across, down):
+        top += 1
+    trimmed = set()
+    coded = {}  # (l, p, q) -> "kept" | "trimmed" | "mixed"
+
+    def exists(l, p, q):
+        return p * 2 ** l < across and q * 2 ** l < down
+
+    def state(l, p, q):
+        m = l
+        while m <= top:
+            s = coded.get((m, p, q))
+            if s in ("kept", "trimmed"):
+                return s
+            if s == "mixed":
+                return s if m == l else None
+            m, p, q = m + 1, p // 2, q // 2
+        return None
+
+    def neighbours(l, p, q, what):
+        n = 0
+        for pp, qq in ((p - 1, q), (p, q - 1)):
+            if pp >= 0 and qq >= 0 and exists(l, pp, qq) and state(l, pp, qq) in ("mixed", what):
+                n += 1
+        return n
+
+    def code(l, p, q, t_known=None, k_known=None):
+        lv = min(l, 11)
+        t = t_known if t_known is not None else rc.bit((2 * lv) * 3 + neighbours(l, p, q, "trimmed"))
+        if l == 0 or not t:
+            k = not t
+        elif k_known is not None:
+            k = k_known
+        else:
+            k = rc.bit((2 * lv + 1) * 3 + neighbours(l, p, q, "kept"))
+        coded[(l, p, q)] = "mixed" if t and k else "trimmed" if t else "kept"
+        if t and not k:
+            for y in range(q * 2 ** l, min(down, (q + 1) * 2 ** l)):
+                for x in range(p * 2 ** l, min(across, (p + 1) * 2 ** l)):
+                    trimmed.add(y * across + x)
+        return bool(t), bool(k)
+
+    try:
+        t, k = code(top, 0, 0)
+        mixed = [(0, 0)] if t and k else []
+        for l in range(top - 1, -1, -1):
+            following = []
+            for p, q in mixed:
+                children = [(2 * p + dx, 2 * q + dy) for dy in (0, 1) for dx in (0, 1) if exists(l, 2 * p + dx, 2 * q + dy)]
+                any_t = any_k = False
+                for i, (cp, cq) in enumerate(children):
+                    last = i == len(children) - 1
+                    t_known = k_known = None
+                    if last and not any_t:
+                        t_known = 1
+                    if last and not any_k:
+                        if l == 0:
+                            t_known = 0
+                        else:
+                            k_known = 1
+                    t, k = code(l, cp, cq, t_known, k_known)
+                    any_t, any_k = any_t or t, any_k or k
+                    if t and k:
+                        following.append((cp, cq))
+            mixed = following
+    except Starved:
+        pass
+    return trimmed
+
+
 def read_residual(data, L):
     """The layer after the checksum: its settings, and the offsets (None when cut inside its header)."""
     r = Reader(data, L, len(data))
     # A prefix that ends inside the header decodes to the curves alone, but what it holds is checked as it
     # is read: an unknown transform, a varint not in its shortest form or too long.
+    T, trim_crc = 0, 0
     try:
-        transform = r.u8()
-        if transform != 1:
-            raise Bad("residual transform %d at byte %d" % (transform, L))
+        kind = r.u8()
+        if kind not in (1, 2):
+            raise Bad("residual layer kind %d at byte %d" % (kind, L))
         at_w = r.pos
         W, H = r.varint(), r.varint()
         at_levels = r.pos
@@ -461,6 +538,11 @@ def read_residual(data, L):
         step = r.varint()
         at_planes = r.pos
         planes = r.u8()
+        if kind == 2:
+            at_t = r.pos
+            T = r.varint()
+            trim_crc_at = r.pos
+            trim_crc = struct.unpack("<I", r.take(4))[0]
         at_s = r.pos
         S = r.varint()
         stream_crc = struct.unpack("<I", r.take(4))[0]
@@ -480,15 +562,22 @@ def read_residual(data, L):
         raise Bad("a residual step out of range at byte %d" % at_step)
     if planes == 0 or planes > 40:
         raise Bad("a bit-plane count out of range at byte %d" % at_planes)
+    if kind == 2 and T > MAX_Q:
+        raise Bad("a residual trim too long at byte %d" % at_t)
     if S > MAX_Q:
         raise Bad("a residual stream too long at byte %d" % at_s)
-    start = r.pos
-    if len(data) - start > S:
+    trim_start = r.pos
+    start = trim_start + T
+    if len(data) - trim_start > T + S:
         raise Bad("bytes after the residual stream at byte %d" % (start + S))
-    stream = data[start:]
+    trim = data[trim_start:min(len(data), start)]
+    if kind == 2 and len(trim) == T and zlib.crc32(trim) != trim_crc:
+        raise Bad("the residual trim's checksum at byte %d" % trim_crc_at)
+    stream = data[start:] if len(data) > start else b""
     complete = len(stream) == S
     if complete and zlib.crc32(stream) != stream_crc:
         raise Bad("the residual stream's checksum at byte %d" % (header_crc_at - 4))
+    trimmed = decode_trim(trim, W - 1, H - 1) if T > 0 and len(trim) > 0 else set()
     m, negative, lowest = decode_stream(stream, W, H, levels, planes)
     delta = step * UNIT
     c = [0.0] * (W * H)
@@ -497,7 +586,8 @@ def read_residual(data, L):
             v = (m[i] + 2 ** lowest[i] / 2) * delta
             c[i] = -v if negative[i] else v
     return {"cut": False, "W": W, "H": H, "levels": levels, "step": delta, "planes": planes, "S": S,
-            "held": len(stream), "complete": complete, "offsets": inverse_wavelet(c, W, H, levels)}
+            "held": len(stream), "complete": complete, "offsets": inverse_wavelet(c, W, H, levels),
+            "T": T, "trim_held": len(trim), "trim_complete": kind == 2 and len(trim) == T, "trimmed": trimmed}
 
 
 def print_residual(layer):
@@ -510,6 +600,9 @@ def print_residual(layer):
     W = layer["W"]
     for k in range(layer["H"]):  # row k: v = k·π/(H − 1), its W nodes across u
         print(" ".join("%.17g" % d for d in layer["offsets"][k * W:(k + 1) * W]))
+    print("trim bytes %d held %d complete %d cells %d" % (layer["T"], layer["trim_held"], layer["trim_complete"],
+                                                       len(layer["trimmed"])))
+    print(" ".join(str(c) for c in sorted(layer["trimmed"])))
 
 
 def main(path):

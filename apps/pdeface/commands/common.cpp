@@ -208,9 +208,13 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
         out.string(), e.bytes.size(), e.step_mm, e.max_sample_error, e.max_surface_error,
         request.encoding.max_error_mm);
   if (const std::optional<pipeline::ResidualOutcome>& r = made->residual) {
-    fmt::print("residual layer: {} bytes ({} x {} grid at {} mm, the scan found at {:.1f} % of it; the whole "
-               "stream {} bytes)\n",
-               r->layer_bytes, r->width, r->height, r->spacing_mm, 100.0 * r->found_share, r->whole_stream);
+    fmt::print("residual layer: {} bytes ({} x {} grid at {} mm, the scan found at {:.1f} % of it{}; the "
+               "whole stream {} bytes)\n",
+               r->layer_bytes, r->width, r->height, r->spacing_mm, 100.0 * r->found_share,
+               r->trim_bytes > 0 ? fmt::format(", {:.2f} % of its cells trimmed in {} bytes",
+                                               100.0 * r->trimmed_share, r->trim_bytes)
+                                 : std::string(),
+               r->whole_stream);
     if (r->measured)
       fmt::print(
           "measured: the decoded file lies mean {:.4f}, p95 {:.4f}, max {:.3f} mm from the scan in the "

@@ -109,6 +109,14 @@ Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution, std
   }
   mesh.name = face.name;
   if (face.texture) with_texture(mesh, scan->u_count(), scan->v_count(), *face.texture);
+  if (has_offsets(face) && !face.residual->trimmed.empty()) { // cells with no scan under them go
+    const pde::Displacement& field = face.residual->field;
+    const std::vector<std::uint8_t> cells = pde::resample_trim(
+        face.residual->trimmed, field.width, field.height, scan->u_count(), scan->v_count());
+    pde::trim_grid(mesh, scan->u_count(), scan->v_count(), cells);
+    if (mesh.triangles.empty())
+      return make_error(ErrorCode::Empty, "the residual layer's trim leaves no surface", std::string(source));
+  }
   return mesh;
 }
 

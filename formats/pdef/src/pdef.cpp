@@ -773,7 +773,9 @@ Result<std::vector<Section>> sections(std::string_view bytes, std::string_view s
     if (!layer) return std::move(layer).error();
     if (layer->header_bytes > 0) {
       out.push_back({"residual header", layer->offset, layer->header_bytes});
-      out.push_back({"residual stream", layer->offset + layer->header_bytes, layer->bytes_read});
+      const std::size_t trim_at = layer->offset + layer->header_bytes;
+      if (layer->trim_bytes > 0) out.push_back({"residual trim", trim_at, layer->trim_bytes_read});
+      out.push_back({"residual stream", trim_at + layer->trim_bytes, layer->bytes_read});
     } else {
       out.push_back({"residual (cut inside its header)", layer->offset, bytes.size() - layer->offset});
     }

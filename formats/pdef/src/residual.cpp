@@ -8,6 +8,7 @@
 #include "codec.hpp"
 #include "entropy.hpp"
 #include "residual_layer.hpp"
+#include "trim.hpp"
 #include "wavelet.hpp"
 
 #include <fmt/format.h>
@@ -79,15 +80,27 @@ Result<CodedResidual> code_residual(const pde::Displacement& field, const Residu
   return out;
 }
 
-std::string residual_header(const CodedResidual& layer, std::size_t stream_bytes) {
+std::string code_trim(const std::vector<std::uint8_t>& trimmed, std::size_t width, std::size_t height) {
+  if (width < 2 || height < 2 || trimmed.size() != (width - 1) * (height - 1))
+    throw std::invalid_argument("pdef::code_trim: a trim that does not match its grid");
+  return detail::encode_trim(trimmed, width - 1, height - 1);
+}
+
+std::string residual_header(const CodedResidual& layer, std::size_t stream_bytes, std::size_t trim_bytes) {
   stream_bytes = std::min(stream_bytes, layer.stream.size());
+  trim_bytes = std::min(trim_bytes, layer.trim.size());
   Writer w;
-  w.u8(detail::kTransform97);
+  const bool trimmed = trim_bytes > 0; // a trim cut to nothing: a layer of offsets alone
+  w.u8(trimmed ? detail::kLayerTrimmed : detail::kLayerOffsets);
   w.varint(layer.width);
   w.varint(layer.height);
   w.u8(static_cast<std::uint8_t>(layer.levels));
   w.varint(layer.step_units);
   w.u8(static_cast<std::uint8_t>(layer.planes));
+  if (trimmed) {
+    w.varint(trim_bytes);
+    w.u32(detail::crc32(std::string_view(layer.trim).substr(0, trim_bytes)));
+  }
   w.varint(stream_bytes);
   w.u32(detail::crc32(std::string_view(layer.stream).substr(0, stream_bytes)));
   w.u32(detail::crc32(w.str()));
@@ -95,17 +108,23 @@ std::string residual_header(const CodedResidual& layer, std::size_t stream_bytes
 }
 
 Result<std::string> with_residual(std::string_view curves_file, const CodedResidual& layer,
-                                  std::size_t max_bytes) {
+                                  std::size_t max_bytes, const ResidualCut& cut) {
   if (curves_file.size() < detail::kMinFileBytes || curves_file.substr(0, 4) != kMagic ||
       static_cast<std::uint8_t>(curves_file[4]) != detail::kVersion)
     return invalid("a residual layer goes after a version 2 file");
-  const std::size_t fixed = curves_file.size() + residual_header(layer, 0).size();
+  const std::size_t fixed = curves_file.size() + residual_header(layer, 0, 0).size();
   if (max_bytes < fixed)
     return invalid(
         fmt::format("{} bytes cannot hold the curves and the layer's header ({} bytes)", max_bytes, fixed));
-  // The header grows with the stream's length (a varint): cut the stream until both fit.
-  std::size_t stream = std::min(layer.stream.size(), max_bytes - fixed);
-  while (stream > 0 && curves_file.size() + residual_header(layer, stream).size() + stream > max_bytes)
+  // The header grows with the streams' lengths (varints): cut the trim, then the stream, until all fit.
+  const auto size = [&](std::size_t trim, std::size_t stream) {
+    return curves_file.size() + residual_header(layer, stream, trim).size() + trim + stream;
+  };
+  std::size_t trim = std::min({cut.trim_bytes, layer.trim.size(), max_bytes - fixed});
+  while (trim > 0 && size(trim, 0) > max_bytes)
+    --trim;
+  std::size_t stream = std::min(layer.stream.size(), max_bytes - fixed - trim);
+  while (stream > 0 && size(trim, stream) > max_bytes)
     --stream;
   std::string out(curves_file);
   out[4] = static_cast<char>(detail::kVersionResidual);
@@ -113,7 +132,8 @@ Result<std::string> with_residual(std::string_view curves_file, const CodedResid
   const std::uint32_t crc = detail::crc32(std::string_view(out).substr(0, body));
   for (int i = 0; i < 4; ++i)
     out[body + i] = static_cast<char>(crc >> (8 * i));
-  out += residual_header(layer, stream);
+  out += residual_header(layer, stream, trim);
+  out.append(layer.trim, 0, trim);
   out.append(layer.stream, 0, stream);
   return out;
 }
@@ -135,13 +155,14 @@ Result<Residual> read_residual(std::string_view bytes, std::size_t offset, std::
   Reader r(bytes.substr(offset), offset, source);
   // A prefix that ends inside the header holds no offsets: the surface of the curves alone.
   const auto cut = [&]() { return r.error().code == ErrorCode::Truncated; };
-  const std::size_t transform_at = r.offset();
-  const std::uint8_t transform = r.u8("the residual layer's transform");
+  const std::size_t kind_at = r.offset();
+  const std::uint8_t kind = r.u8("the residual layer's kind");
   if (!r.ok()) return cut() ? Result<Residual>(out) : r.error();
-  if (transform != kTransform97)
+  if (kind != kLayerOffsets && kind != kLayerTrimmed)
     return make_error(ErrorCode::UnsupportedFormat,
-                      fmt::format("residual transform {} (this reader knows {})", transform, kTransform97),
-                      std::string(source), Location::at_byte(transform_at));
+                      fmt::format("residual layer kind {} (this reader knows {} and {})", kind, kLayerOffsets,
+                                  kLayerTrimmed),
+                      std::string(source), Location::at_byte(kind_at));
   const std::size_t size_at = r.offset();
   const std::uint64_t width = r.varint("the residual grid's width");
   const std::uint64_t height = r.varint("the residual grid's height");
@@ -151,6 +172,15 @@ Result<Residual> read_residual(std::string_view bytes, std::size_t offset, std::
   const std::uint64_t step = r.varint("the residual's step");
   const std::size_t planes_at = r.offset();
   const std::uint8_t planes = r.u8("the residual's bit-planes");
+  std::size_t trim_length_at = 0, trim_crc_at = 0;
+  std::uint64_t trim_length = 0;
+  std::uint32_t trim_crc = 0;
+  if (kind == kLayerTrimmed) {
+    trim_length_at = r.offset();
+    trim_length = r.varint("the residual trim's length");
+    trim_crc_at = r.offset();
+    trim_crc = r.u32("the residual trim's checksum");
+  }
   const std::size_t length_at = r.offset();
   const std::uint64_t length = r.varint("the residual stream's length");
   const std::uint32_t stream_crc = r.u32("the residual stream's checksum");
@@ -183,16 +213,29 @@ Result<Residual> read_residual(std::string_view bytes, std::size_t offset, std::
                 fmt::format("a residual step of {} units (1 to {})", step, kMaxStepUnits - 1), step_at);
   if (planes == 0 || planes > kMaxPlanes)
     return fail(ErrorCode::Malformed, fmt::format("{} bit-planes (1 to {})", planes, kMaxPlanes), planes_at);
+  if (trim_length > kMaxStream)
+    return fail(ErrorCode::CountTooLarge,
+                fmt::format("a residual trim of {} bytes (at most {})", trim_length, kMaxStream),
+                trim_length_at);
   if (length > kMaxStream)
     return fail(ErrorCode::CountTooLarge,
                 fmt::format("a residual stream of {} bytes (at most {})", length, kMaxStream), length_at);
-  const std::size_t stream_at = r.offset();
-  const std::size_t held = bytes.size() - stream_at;
-  if (held > length)
+  const std::size_t trim_at = r.offset();
+  const std::size_t stream_at = trim_at + static_cast<std::size_t>(trim_length);
+  const std::size_t after = bytes.size() - trim_at; // the trim's bytes and the stream's, as far as held
+  if (after > trim_length + length)
     return fail(ErrorCode::Malformed,
-                fmt::format("{} bytes after the residual stream's {}", held - length, length),
+                fmt::format("{} bytes after the residual stream's {}", after - trim_length - length, length),
                 stream_at + static_cast<std::size_t>(length));
-  const std::string_view stream = bytes.substr(stream_at);
+  const std::string_view trim = bytes.substr(trim_at, std::min<std::size_t>(after, trim_length));
+  out.trim_bytes = static_cast<std::size_t>(trim_length);
+  out.trim_bytes_read = trim.size();
+  out.trim_complete = kind == kLayerTrimmed && trim.size() == trim_length;
+  if (out.trim_complete && crc32(trim) != trim_crc)
+    return fail(ErrorCode::ChecksumMismatch, "the residual trim does not match its checksum: it was damaged",
+                trim_crc_at);
+  const std::size_t held = after > trim_length ? after - static_cast<std::size_t>(trim_length) : 0;
+  const std::string_view stream = held > 0 ? bytes.substr(stream_at) : std::string_view();
   out.complete = held == length;
   if (out.complete && crc32(stream) != stream_crc)
     return fail(ErrorCode::ChecksumMismatch,
@@ -200,9 +243,14 @@ Result<Residual> read_residual(std::string_view bytes, std::size_t offset, std::
   out.step_mm = static_cast<double>(step) * kStepUnit;
   out.levels = levels;
   out.planes = planes;
-  out.header_bytes = stream_at - offset;
+  out.header_bytes = trim_at - offset;
   out.stream_bytes = static_cast<std::size_t>(length);
   out.bytes_read = held;
+  if (kind == kLayerTrimmed) {
+    DecodedTrim decoded = decode_trim(trim, width - 1, height - 1);
+    if (std::ranges::any_of(decoded.cells, [](std::uint8_t c) { return c != 0; }))
+      out.trimmed = std::move(decoded.cells);
+  }
   DecodedPlanes decoded = decode_planes(stream, width, height, levels, planes);
   out.planes_read = planes - decoded.lowest_plane;
   out.field = reconstruct(std::move(decoded), width, height, levels, out.step_mm);

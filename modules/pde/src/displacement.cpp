@@ -122,4 +122,71 @@ void displace_grid(std::span<Vec3> positions, std::span<Vec3f> normals, std::siz
   }
 }
 
+std::vector<std::uint8_t> resample_trim(std::span<const std::uint8_t> trimmed, std::size_t width,
+                                        std::size_t height, std::size_t u_count, std::size_t v_count) {
+  if (width < 2 || height < 2 || trimmed.size() != (width - 1) * (height - 1))
+    throw std::invalid_argument("pde::resample_trim: a trim that does not match its grid");
+  if (u_count < 2 || v_count < 2) throw std::invalid_argument("pde::resample_trim: at least 2 x 2 nodes");
+  if (u_count == width && v_count == height) return {trimmed.begin(), trimmed.end()};
+  const std::size_t across = u_count - 1, down = v_count - 1, from_across = width - 1, from_down = height - 1;
+  // A cell's centre (i + 1/2) / across of the way across lies in the trim's cell ⌊that · from_across⌋.
+  std::vector<std::size_t> column(across);
+  for (std::size_t i = 0; i < across; ++i)
+    column[i] = std::min(from_across - 1, (2 * i + 1) * from_across / (2 * across));
+  std::vector<std::uint8_t> out(across * down);
+  for (std::size_t k = 0; k < down; ++k) {
+    const std::size_t row = std::min(from_down - 1, (2 * k + 1) * from_down / (2 * down));
+    for (std::size_t i = 0; i < across; ++i)
+      out[k * across + i] = trimmed[row * from_across + column[i]] != 0 ? 1 : 0;
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> trim_grid(Mesh& mesh, std::size_t u_count, std::size_t v_count,
+                                     std::span<const std::uint8_t> trimmed) {
+  const std::size_t cells = (u_count - 1) * (v_count - 1);
+  if (u_count < 2 || v_count < 2 || mesh.vertex_count() != u_count * v_count ||
+      mesh.triangle_count() != 2 * cells || trimmed.size() != cells || mesh.has_corner_texcoords())
+    throw std::invalid_argument("pde::trim_grid: a mesh or trim that is not the grid's");
+  std::vector<std::uint32_t> kept_vertices;
+  if (std::ranges::none_of(trimmed, [](std::uint8_t t) { return t != 0; })) {
+    kept_vertices.resize(mesh.vertex_count());
+    for (std::size_t v = 0; v < kept_vertices.size(); ++v)
+      kept_vertices[v] = static_cast<std::uint32_t>(v);
+    return kept_vertices;
+  }
+  constexpr std::uint32_t kGone = 0xFFFFFFFFu;
+  std::vector<std::uint32_t> index(mesh.vertex_count(), kGone);
+  std::size_t triangles = 0;
+  for (std::size_t c = 0; c < cells; ++c) {
+    if (trimmed[c] != 0) continue;
+    for (std::size_t t = 2 * c; t < 2 * c + 2; ++t) {
+      mesh.triangles[triangles++] = mesh.triangles[t];
+      for (const std::uint32_t v : mesh.triangles[t])
+        index[v] = 0;
+    }
+  }
+  mesh.triangles.resize(triangles);
+  std::uint32_t next = 0;
+  for (std::size_t v = 0; v < index.size(); ++v)
+    if (index[v] == 0) {
+      index[v] = next++;
+      kept_vertices.push_back(static_cast<std::uint32_t>(v));
+    }
+  const auto compact = [&](auto& attribute) {
+    if (attribute.size() != index.size()) return;
+    for (std::size_t i = 0; i < kept_vertices.size(); ++i)
+      attribute[i] = attribute[kept_vertices[i]];
+    attribute.resize(kept_vertices.size());
+  };
+  compact(mesh.positions);
+  compact(mesh.normals);
+  compact(mesh.colors);
+  compact(mesh.texcoords);
+  for (Triangle& t : mesh.triangles)
+    for (std::uint32_t& v : t)
+      v = index[v];
+  return kept_vertices;
+}
+
 } // namespace pdeface::pde

@@ -107,6 +107,42 @@ Measured measure(const pde::Surface& surface, const Mesh& scan, std::size_t widt
   return out;
 }
 
+std::vector<std::uint8_t> trim(const pde::Surface& surface, const Mesh& scan, const Measured& measured,
+                               const TrimOptions& options) {
+  const std::size_t w = measured.field.width, h = measured.field.height;
+  if (w < 2 || h < 2 || measured.field.values.size() != w * h || measured.found.size() != w * h)
+    throw std::invalid_argument("residual::trim: a measured grid of another size");
+  const pde::NormalGrid grid = pde::normal_grid(surface, w, h);
+  const std::vector<double>& d = measured.field.values;
+  std::vector<Vec3> at(w * h);
+  for (std::size_t p = 0; p < w * h; ++p)
+    at[p] = grid.points[p] + d[p] * grid.normals[p];
+  const metrics::SurfaceDistance distance(scan);
+  const auto off = [&](const Vec3& p) { return distance.distance(p) > options.off_scan_mm; };
+  std::vector<std::uint8_t> lost(w * h, 0); // nodes not found and off the scan
+  for (std::size_t p = 0; p < w * h; ++p)
+    lost[p] = !measured.found[p] && off(at[p]) ? 1 : 0;
+  const auto torn = [&](std::size_t a, std::size_t b) {
+    return std::abs(d[a] - d[b]) > options.tear_slope * (grid.points[a] - grid.points[b]).norm();
+  };
+  std::vector<std::uint8_t> out((w - 1) * (h - 1), 0);
+  for (std::size_t k = 0; k + 1 < h; ++k)
+    for (std::size_t i = 0; i + 1 < w; ++i) {
+      const std::size_t a = k * w + i, b = a + 1, c = a + w, e = c + 1; // corners: a b below, c e above
+      std::uint8_t& cell = out[k * (w - 1) + i];
+      if (lost[a] || lost[b] || lost[c] || lost[e]) {
+        cell = 1;
+        continue;
+      }
+      if (!(torn(a, b) || torn(c, e) || torn(a, c) || torn(b, e) || torn(a, e))) continue;
+      cell = off((at[a] + at[b] + at[c] + at[e]) / 4.0) || off((at[a] + at[b]) / 2.0) ||
+                     off((at[c] + at[e]) / 2.0) || off((at[a] + at[c]) / 2.0) || off((at[b] + at[e]) / 2.0)
+                 ? 1
+                 : 0;
+    }
+  return out;
+}
+
 void fill(pde::Displacement& field, const std::vector<std::uint8_t>& found) {
   const std::size_t w = field.width, h = field.height;
   if (w * h == 0 || found.size() != w * h) return;

@@ -5,8 +5,9 @@
 //   sample_10.pdef / _lossless    the built-in sample face through the whole pipeline at 10 %
 //   (sample_10.json:
 //                                 what it held when it was made)
-//   sample_residual.pdef          version 3, with a residual layer (made and described in residual_test.cpp);
-//                                 here only the independent reader's test reads it
+//   sample_residual.pdef          version 3, with a residual layer and a trim (made and described in
+//                                 residual_test.cpp); here only the independent reader's test reads it
+//   sample_residual_offsets.pdef  the same made by the first version 3 writer: offsets alone (kind 1)
 
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/pdef/mesh.hpp"
@@ -260,6 +261,28 @@ void expect_same_residual(std::istream& in, const Face& face, const std::string&
                     << fmt::format("{:.17g}", d) << ", C++ " << fmt::format("{:.17g}", layer.field.values[n]);
   EXPECT_EQ(n, layer.field.values.size()) << what;
   EXPECT_EQ(differ, 0U) << what << ": offsets that differ";
+  // The trim: "trim bytes T held n complete 0|1 cells c", then the trimmed cells' indices.
+  in.clear();
+  std::string trim_line, cells_line;
+  ASSERT_TRUE(std::getline(in >> std::ws, trim_line)) << what;
+  std::istringstream trim(trim_line);
+  std::size_t bytes = 0, trim_held = 0, count = 0;
+  int trim_complete = 0;
+  trim >> word >> word >> bytes >> word >> trim_held >> word >> trim_complete >> word >> count;
+  ASSERT_TRUE(trim) << what << ": " << trim_line;
+  EXPECT_EQ(bytes, layer.trim_bytes) << what;
+  EXPECT_EQ(trim_held, layer.trim_bytes_read) << what;
+  EXPECT_EQ(trim_complete != 0, layer.trim_complete) << what;
+  std::getline(in, cells_line);
+  std::vector<std::size_t> cells;
+  std::istringstream listed(cells_line);
+  for (std::size_t c = 0; listed >> c;)
+    cells.push_back(c);
+  EXPECT_EQ(cells.size(), count) << what;
+  std::vector<std::size_t> ours;
+  for (std::size_t c = 0; c < layer.trimmed.size(); ++c)
+    if (layer.trimmed[c] != 0) ours.push_back(c);
+  EXPECT_EQ(cells, ours) << what << ": trimmed cells that differ";
 }
 
 // The same reader decodes the residual layer of a version 3 file (the built-in sample face with a layer,
@@ -269,28 +292,41 @@ void expect_same_residual(std::istream& in, const Face& face, const std::string&
 TEST(PdefSpec, AnIndependentReaderReadsTheResidualLayer) {
   if (std::system("python3 --version >/dev/null 2>&1") != 0) GTEST_SKIP() << "python3 not found";
   const test::TempDir tmp;
-  const std::string file = slurp(golden("sample_residual.pdef"));
-  const Face whole = decode(file, "sample_residual.pdef").value();
-  ASSERT_TRUE(whole.residual && whole.residual->complete);
-  const std::size_t at = whole.residual->offset, stream = at + whole.residual->header_bytes;
-  ASSERT_EQ(stream + whole.residual->stream_bytes, file.size());
-  for (const std::size_t n :
-       {file.size(), at, at + 1, at + 7, stream, stream + 1, stream + 3, stream + 4, stream + 5, stream + 6,
-        stream + 10, stream + 37, stream + 100, stream + 255, stream + 500, file.size() - 1}) {
-    const std::string what = fmt::format("sample_residual.pdef cut to {} bytes", n);
-    const std::filesystem::path cut = tmp / "cut.pdef";
-    std::ofstream(cut, std::ios::binary) << file.substr(0, n);
-    const std::string text = independent_reading(cut, tmp / "values.txt");
-    ASSERT_FALSE(text.empty()) << what;
-    const Face face = decode(std::string_view(file).substr(0, n), "cut").value();
-    std::istringstream in(text);
-    expect_same_samples(in, face, what);
-    expect_same_residual(in, face, what);
+  // sample_residual.pdef has a trim (kind 2); sample_residual_offsets.pdef is the first writer's layer of
+  // offsets alone (kind 1), which every reader still reads.
+  for (const char* name : {"sample_residual.pdef", "sample_residual_offsets.pdef"}) {
+    const std::string file = slurp(golden(name));
+    const Face whole = decode(file, name).value();
+    ASSERT_TRUE(whole.residual && whole.residual->complete) << name;
+    const std::size_t at = whole.residual->offset, trim = at + whole.residual->header_bytes;
+    const std::size_t stream = trim + whole.residual->trim_bytes;
+    ASSERT_EQ(stream + whole.residual->stream_bytes, file.size()) << name;
+    std::vector<std::size_t> cuts{file.size(),  at,           at + 1,       at + 7,
+                                  stream,       stream + 1,   stream + 3,   stream + 4,
+                                  stream + 5,   stream + 6,   stream + 10,  stream + 37,
+                                  stream + 100, stream + 255, stream + 500, file.size() - 1};
+    if (whole.residual->trim_bytes > 0) { // inside the trim: before its coder has 4 bytes, and later
+      ASSERT_FALSE(whole.residual->trimmed.empty()) << name;
+      for (const std::size_t in : {1, 3, 4, 5, 9, 17, 33})
+        if (in < whole.residual->trim_bytes) cuts.push_back(trim + in);
+    }
+    for (const std::size_t n : cuts) {
+      const std::string what = fmt::format("{} cut to {} bytes", name, n);
+      const std::filesystem::path cut = tmp / "cut.pdef";
+      std::ofstream(cut, std::ios::binary) << file.substr(0, n);
+      const std::string text = independent_reading(cut, tmp / "values.txt");
+      ASSERT_FALSE(text.empty()) << what;
+      const Face face = decode(std::string_view(file).substr(0, n), "cut").value();
+      std::istringstream in(text);
+      expect_same_samples(in, face, what);
+      expect_same_residual(in, face, what);
+    }
   }
   // A prefix cut inside the header still has what it holds checked as it is read: both refuse an unknown
-  // transform and a varint not in its shortest form.
-  const std::string curves = file.substr(0, at);
-  for (const auto& [cut, code] : {std::pair{curves + "\x02", ErrorCode::UnsupportedFormat},
+  // kind and a varint not in its shortest form.
+  const std::string file = slurp(golden("sample_residual.pdef"));
+  const std::string curves = file.substr(0, decode(file, "sample_residual.pdef").value().residual->offset);
+  for (const auto& [cut, code] : {std::pair{curves + "\x03", ErrorCode::UnsupportedFormat},
                                   std::pair{curves + std::string("\x01\x80\x00", 3), ErrorCode::Malformed}}) {
     const std::filesystem::path path = tmp / "hostile.pdef";
     std::ofstream(path, std::ios::binary) << cut;

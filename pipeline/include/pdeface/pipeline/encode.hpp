@@ -48,6 +48,8 @@ struct ResidualOutcome {
   double spacing_mm = 0.0;
   std::size_t width = 0, height = 0;
   double found_share = 0.0;                      //!< of the grid's nodes whose normal met the scan
+  double trimmed_share = 0.0;                    //!< of the grid's cells the file's trim leaves out
+  std::size_t trim_bytes = 0;                    //!< the trim in the file (0: none; docs/pdef-format.md)
   std::size_t layer_bytes = 0;                   //!< header and stream in the file
   std::size_t whole_stream = 0;                  //!< the stream coded to its finest step
   std::optional<metrics::MeshFidelity> measured; //!< target: the file's decoded surface measured on the scan

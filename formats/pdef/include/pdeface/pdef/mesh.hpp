@@ -78,8 +78,10 @@ struct SurfaceMesh {
 //! spacing; with a residual layer its own grid): `scan_mesher(face, surface_of(face),
 //! resolution).mesh(face.frame.scan_units)`, then each vertex moved along its normal by the layer's offset
 //! there (`pde::GridMesher::displaced_mesh`; the layer's values at its nodes, bilinear between them, given
-//! the moved grid's normals), named after the face; with a texture layer, textured (`with_texture`).
-//! Its scan mesh is `surface_mesh`'s to the bit. Errors: those of `surface_of` and `scan_mesher`.
+//! the moved grid's normals), named after the face; with a texture layer, textured (`with_texture`); then
+//! the cells the layer's trim leaves out dropped with the vertices no triangle uses (`pde::trim_grid`).
+//! Its scan mesh is `surface_mesh`'s to the bit. Errors: those of `surface_of` and `scan_mesher`; `Empty`
+//! for a trim that leaves no triangle.
 [[nodiscard]] Result<Mesh> to_mesh(const Face& face, std::optional<Resolution> resolution = std::nullopt,
                                    std::string_view source = {});
 

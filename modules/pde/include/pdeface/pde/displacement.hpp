@@ -9,6 +9,7 @@
 #include "pdeface/pde/surface.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -54,5 +55,21 @@ struct NormalGrid {
 //! \throw std::invalid_argument for sizes that do not match
 void displace_grid(std::span<Vec3> positions, std::span<Vec3f> normals, std::size_t u_count,
                    std::size_t v_count, std::span<const double> offsets, double scale);
+
+//! Which cells of a u_count × v_count grid (cell (i, k) between nodes (i, k) and (i + 1, k + 1), at
+//! k·(u_count − 1) + i) lie in a trimmed cell of `trimmed`, the cells of a width × height grid over the same
+//! domain (1 trimmed): each cell takes the value of the cell holding its centre (a grid the same as
+//! `trimmed`'s: its own values). \throw std::invalid_argument for sizes that do not match or fewer than 2
+//! nodes either way
+[[nodiscard]] std::vector<std::uint8_t> resample_trim(std::span<const std::uint8_t> trimmed,
+                                                      std::size_t width, std::size_t height,
+                                                      std::size_t u_count, std::size_t v_count);
+
+//! Drops from a grid mesh (u_count × v_count vertices, two triangles a cell in rows, as `GridMesher` makes
+//! it) the triangles of the cells `trimmed` marks (1, one per cell, at k·(u_count − 1) + i), then the
+//! vertices no triangle uses any more (their attributes with them; the others keep their order). Returns
+//! for each vertex kept its index in the grid. \throw std::invalid_argument for sizes that do not match
+std::vector<std::uint32_t> trim_grid(Mesh& mesh, std::size_t u_count, std::size_t v_count,
+                                     std::span<const std::uint8_t> trimmed);
 
 } // namespace pdeface::pde

@@ -55,6 +55,27 @@ struct Hit {
 [[nodiscard]] Measured measure(const pde::Surface& surface, const Mesh& scan, std::size_t width,
                                std::size_t height, const MeasureOptions& options = {});
 
+//! When a cell of a measured grid holds no surface (`trimmed`). The surface X + d·n over a cell is the
+//! scan's where the normal lines found it and the scan is continuous between them; elsewhere the layer
+//! spans what the scan does not have: a hole (an eye of a morphable model, an open mouth, a capture gap),
+//! beyond the scan's edge, a cavity the normal lines cannot enter (a nostril), or a cell between two sheets
+//! of a fold.
+struct TrimOptions {
+  //! A point of the measured surface farther than this from the scan (mm) is off it.
+  double off_scan_mm = 0.1;
+  //! A cell is torn (its corners on two sheets of the scan) where the offsets of two of its corners differ
+  //! by more than this times their distance on the curves' surface (a slope of 2: 63° from it).
+  double tear_slope = 2.0;
+};
+
+//! The cells of `measured`'s grid (cell (i, k) between nodes (i, k) and (i + 1, k + 1), at k·(width − 1) +
+//! i) that hold no surface of `scan` (1): a cell with a corner whose normal line found no scan and whose
+//! filled position lies off the scan, and a torn cell whose centre or the middle of a side lies off the
+//! scan. Every other cell is kept, however far its surface lies from the scan between its corners (curved
+//! scan, a coarse grid): its error is counted, not hidden. `surface` and `scan` as given to `measure`.
+[[nodiscard]] std::vector<std::uint8_t> trim(const pde::Surface& surface, const Mesh& scan,
+                                             const Measured& measured, const TrimOptions& options = {});
+
 //! Replaces the values where `found` is 0 by a smooth continuation of the others (a pull-push pyramid
 //! then relaxation towards a harmonic fill); all zero when nothing was found.
 void fill(pde::Displacement& field, const std::vector<std::uint8_t>& found);
