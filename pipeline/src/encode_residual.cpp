@@ -16,11 +16,14 @@
 namespace pdeface::pipeline {
 namespace {
 
-double spacing_for(const ResidualRequest& request, std::size_t curves) {
+// 1 mm below 6 KB of layer, 0.7 mm below 12 KB, 0.35 mm above: the finer grid follows the creases and
+// folds the 0.5 mm one cut (docs/compare.md, "The residual layer"); a point cloud's surface between its
+// points is its tangent planes' model, which a grid finer than 0.5 mm only follows into their noise.
+double spacing_for(const ResidualRequest& request, std::size_t curves, bool cloud) {
   if (request.spacing_mm) return *request.spacing_mm;
   if (!request.size_bytes) return 0.7;
   const std::size_t layer = *request.size_bytes > curves ? *request.size_bytes - curves : 0;
-  return layer < 6000 ? 1.0 : layer < 12000 ? 0.7 : 0.5;
+  return layer < 6000 ? 1.0 : layer < 12000 ? 0.7 : cloud ? 0.5 : 0.35;
 }
 
 double statistic(const metrics::MeshFidelity& f, TargetMeasure measure) {
@@ -57,7 +60,7 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
   Result<pde::Surface> surface = pdef::surface_of(*face, source);
   if (!surface) return std::move(surface).error();
   ResidualOutcome out;
-  const double asked = spacing_for(request, curves.size());
+  const double asked = spacing_for(request, curves.size(), scan.mesh.is_point_cloud());
   const ResidualGrids::Grid* made_grid = nullptr;
   ResidualGrids::Grid own;
   if (grids)
@@ -67,16 +70,18 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
     const auto start = std::chrono::steady_clock::now();
     own.spacing_mm = asked;
     residual::GridSize grid = residual::grid_for(*surface, own.spacing_mm);
-    while (grid.width * grid.height > pdef::kFreeResidualNodes) { // a bust's long, steep sides: coarser
+    const std::size_t most = pdef::max_residual_nodes(curves.size());
+    while (grid.width * grid.height > most) { // a bust's long, steep sides: coarser
       own.spacing_mm *= 1.1;
       grid = residual::grid_for(*surface, own.spacing_mm);
     }
     const residual::Measured measured = residual::measure(*surface, scan.mesh, grid.width, grid.height);
-    Result<pdef::CodedResidual> coded = pdef::code_residual(measured.field);
-    if (!coded) return std::move(coded).error();
     // Cells with no scan under them: off it by a fifth of the grid's spacing (what the grid resolves).
     const std::vector<std::uint8_t> trimmed =
         residual::trim(*surface, scan.mesh, measured, {.off_scan_mm = own.spacing_mm / 5});
+    Result<pdef::CodedResidual> coded =
+        pdef::code_residual(residual::kept_field(measured, trimmed), {.max_nodes = most});
+    if (!coded) return std::move(coded).error();
     coded->trim = pdef::code_trim(trimmed, grid.width, grid.height);
     own.trimmed_share =
         static_cast<double>(std::ranges::count(trimmed, 1)) / static_cast<double>(trimmed.size());

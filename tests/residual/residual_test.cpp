@@ -71,6 +71,30 @@ TEST(ResidualRealScan, MoreBytesLessErrorAndEveryFileWithinItsSize) {
   EXPECT_LT(previous.to_scan.p95, 0.03);
 }
 
+// Above 12 KB of layer the grid is 0.35 mm: more nodes than a reader allows for free (2^18), as many as the
+// curves' bytes justify, so that the file cut right after the layer's header decodes too.
+TEST(ResidualRealScan, AFineGridStaysWithinWhatEveryPrefixAllows) {
+  PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
+  const Scan& s = f18(path);
+  pipeline::EncodeRequest request;
+  request.check.reset();
+  const std::string curves = pipeline::encode_aligned(s.mesh, s.alignment, request).value().encoded.bytes;
+  request.residual.size_bytes = 16384;
+  const pipeline::EncodeOutcome made = pipeline::encode_aligned(s.mesh, s.alignment, request).value();
+  ASSERT_TRUE(made.residual);
+  EXPECT_EQ(made.residual->spacing_mm, 0.35);
+  const std::size_t nodes = made.residual->width * made.residual->height;
+  EXPECT_GT(nodes, pdef::kFreeResidualNodes);
+  EXPECT_LE(nodes, pdef::max_residual_nodes(curves.size()));
+  const pdef::Face whole = pdef::decode(made.encoded.bytes).value();
+  const std::size_t header_end = whole.residual->offset + whole.residual->header_bytes;
+  for (const std::size_t n : {header_end, header_end + 1, header_end + 100}) {
+    const Result<pdef::Face> cut = pdef::decode(std::string_view(made.encoded.bytes).substr(0, n));
+    ASSERT_TRUE(cut) << n << ": " << cut.error().to_string();
+    EXPECT_EQ(cut->residual->field.values.size(), nodes) << n;
+  }
+}
+
 TEST(ResidualRealScan, ATargetErrorIsMetAsMeasuredWithFewBytes) {
   PDEFACE_FACE_OR_SKIP(path, "facefuns_f18.ply");
   const Scan& s = f18(path);

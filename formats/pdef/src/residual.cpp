@@ -48,9 +48,9 @@ pde::Displacement reconstruct(detail::DecodedPlanes planes, std::size_t width, s
 
 Result<CodedResidual> code_residual(const pde::Displacement& field, const ResidualOptions& options) {
   const std::size_t w = field.width, h = field.height;
-  if (w < 2 || h < 2 || w > kMaxResidualSide || h > kMaxResidualSide || w * h > kFreeResidualNodes)
+  if (w < 2 || h < 2 || w > kMaxResidualSide || h > kMaxResidualSide || w * h > options.max_nodes)
     return invalid(fmt::format("a residual grid of {} x {}: 2 to {} a side, at most {} nodes", w, h,
-                               kMaxResidualSide, kFreeResidualNodes));
+                               kMaxResidualSide, options.max_nodes));
   if (field.values.size() != w * h)
     return invalid(fmt::format("{} residual values for a {} x {} grid", field.values.size(), w, h));
   if (!std::ranges::all_of(field.values, [](double v) { return std::isfinite(v); }))

@@ -144,7 +144,7 @@ std::vector<std::uint8_t> resample_trim(std::span<const std::uint8_t> trimmed, s
 
 std::vector<std::uint32_t> trim_grid(Mesh& mesh, std::size_t u_count, std::size_t v_count,
                                      std::span<const std::uint8_t> trimmed) {
-  const std::size_t cells = (u_count - 1) * (v_count - 1);
+  const std::size_t across = u_count - 1, cells = (u_count - 1) * (v_count - 1);
   if (u_count < 2 || v_count < 2 || mesh.vertex_count() != u_count * v_count ||
       mesh.triangle_count() != 2 * cells || trimmed.size() != cells || mesh.has_corner_texcoords())
     throw std::invalid_argument("pde::trim_grid: a mesh or trim that is not the grid's");
@@ -155,37 +155,41 @@ std::vector<std::uint32_t> trim_grid(Mesh& mesh, std::size_t u_count, std::size_
       kept_vertices[v] = static_cast<std::uint32_t>(v);
     return kept_vertices;
   }
-  constexpr std::uint32_t kGone = 0xFFFFFFFFu;
-  std::vector<std::uint32_t> index(mesh.vertex_count(), kGone);
-  std::size_t triangles = 0;
-  for (std::size_t c = 0; c < cells; ++c) {
-    if (trimmed[c] != 0) continue;
-    for (std::size_t t = 2 * c; t < 2 * c + 2; ++t) {
-      mesh.triangles[triangles++] = mesh.triangles[t];
-      for (const std::uint32_t v : mesh.triangles[t])
-        index[v] = 0;
-    }
-  }
-  mesh.triangles.resize(triangles);
-  std::uint32_t next = 0;
-  for (std::size_t v = 0; v < index.size(); ++v)
-    if (index[v] == 0) {
-      index[v] = next++;
-      kept_vertices.push_back(static_cast<std::uint32_t>(v));
+  // A vertex stays when a cell around it does; its new index counts those before it. Then the attributes
+  // move down and the kept cells' triangles are made again with the new indices, in the mesher's pattern
+  // (one pass over each array: the work is moving memory).
+  const auto kept = [&](std::size_t i, std::size_t k) { return trimmed[k * across + i] == 0; };
+  std::vector<std::uint32_t> index(mesh.vertex_count());
+  kept_vertices.reserve(mesh.vertex_count());
+  for (std::size_t k = 0; k < v_count; ++k)
+    for (std::size_t i = 0; i < u_count; ++i) {
+      const bool left = i > 0, right = i<across, below = k> 0, above = k + 1 < v_count;
+      const bool used = (left && below && kept(i - 1, k - 1)) || (right && below && kept(i, k - 1)) ||
+                        (left && above && kept(i - 1, k)) || (right && above && kept(i, k));
+      const std::size_t v = k * u_count + i;
+      index[v] = static_cast<std::uint32_t>(kept_vertices.size());
+      if (used) kept_vertices.push_back(static_cast<std::uint32_t>(v));
     }
   const auto compact = [&](auto& attribute) {
     if (attribute.size() != index.size()) return;
-    for (std::size_t i = 0; i < kept_vertices.size(); ++i)
-      attribute[i] = attribute[kept_vertices[i]];
+    for (std::size_t n = 0; n < kept_vertices.size(); ++n)
+      attribute[n] = attribute[kept_vertices[n]];
     attribute.resize(kept_vertices.size());
   };
   compact(mesh.positions);
   compact(mesh.normals);
   compact(mesh.colors);
   compact(mesh.texcoords);
-  for (Triangle& t : mesh.triangles)
-    for (std::uint32_t& v : t)
-      v = index[v];
+  std::size_t t = 0;
+  for (std::size_t k = 0; k + 1 < v_count; ++k)
+    for (std::size_t i = 0; i < across; ++i) {
+      if (!kept(i, k)) continue;
+      const std::uint32_t below = index[k * u_count + i], right = index[k * u_count + i + 1];
+      const std::uint32_t above = index[(k + 1) * u_count + i], corner = index[(k + 1) * u_count + i + 1];
+      mesh.triangles[t++] = {below, right, corner}; // GridMesher::triangles: counter-clockwise in (u, v)
+      mesh.triangles[t++] = {below, corner, above};
+    }
+  mesh.triangles.resize(t);
   return kept_vertices;
 }
 

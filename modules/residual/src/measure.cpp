@@ -126,8 +126,10 @@ std::vector<std::uint8_t> trim(const pde::Surface& surface, const Mesh& scan, co
     return std::abs(d[a] - d[b]) > options.tear_slope * (grid.points[a] - grid.points[b]).norm();
   };
   std::vector<std::uint8_t> out((w - 1) * (h - 1), 0);
-  for (std::size_t k = 0; k + 1 < h; ++k)
-    for (std::size_t i = 0; i + 1 < w; ++i) {
+  // The grid's border cells stay: the surface ends where the curves end, at the scan's edge, and a cell
+  // there lies within a cell of it.
+  for (std::size_t k = 1; k + 2 < h; ++k)
+    for (std::size_t i = 1; i + 2 < w; ++i) {
       const std::size_t a = k * w + i, b = a + 1, c = a + w, e = c + 1; // corners: a b below, c e above
       std::uint8_t& cell = out[k * (w - 1) + i];
       if (lost[a] || lost[b] || lost[c] || lost[e]) {
@@ -140,6 +142,21 @@ std::vector<std::uint8_t> trim(const pde::Surface& surface, const Mesh& scan, co
                  ? 1
                  : 0;
     }
+  return out;
+}
+
+pde::Displacement kept_field(const Measured& measured, const std::vector<std::uint8_t>& trimmed) {
+  const std::size_t w = measured.field.width, h = measured.field.height;
+  if (w < 2 || h < 2 || trimmed.size() != (w - 1) * (h - 1) || measured.field.values.size() != w * h)
+    throw std::invalid_argument("residual::kept_field: a trim of another grid");
+  std::vector<std::uint8_t> used(w * h, 0);
+  for (std::size_t k = 0; k + 1 < h; ++k)
+    for (std::size_t i = 0; i + 1 < w; ++i)
+      if (trimmed[k * (w - 1) + i] == 0)
+        for (const std::size_t p : {k * w + i, k * w + i + 1, (k + 1) * w + i, (k + 1) * w + i + 1})
+          used[p] = 1;
+  pde::Displacement out = measured.field;
+  if (std::ranges::find(used, 0) != used.end()) fill(out, used);
   return out;
 }
 

@@ -127,7 +127,7 @@ TEST(PdefResidual, EveryPrefixOfTheLayerDecodesAndImproves) {
 }
 
 // tests/data/pdef/sample_residual.pdef: the built-in sample face, `pdeface encode --size 1600` (777 bytes
-// of curves, 823 of layer: 24 of header, 76 of trim, 723 of stream). Cut at every byte of its layer, it
+// of curves, 823 of layer: 24 of header, 73 of trim, 726 of stream). Cut at every byte of its layer, it
 // decodes to a surface that comes closer to the whole file's as bytes are added, and trims more of it,
 // never a cell the whole file keeps. sample_residual_offsets.pdef, made the same way by the first version 3
 // writer (no trim), too.
@@ -318,14 +318,23 @@ TEST(PdefResidual, TheMeshLeavesOutTrimmedCellsAndTheirLoneVertices) {
   EXPECT_EQ(cut.triangle_count(), full.triangle_count() - 2 * 20);
   EXPECT_EQ(cut.vertex_count(), 600u - 3 * 4);
   EXPECT_EQ(cut.normals.size(), cut.vertex_count());
-  // The vertices kept are the grid's in order, moved as before.
-  std::size_t v = 0;
-  for (std::size_t g = 0; g < 600; ++g) {
+  // The vertices kept are the grid's in order, moved as before; the triangles kept are the grid's, in order.
+  std::vector<std::uint32_t> grid_index;
+  for (std::uint32_t g = 0; g < 600; ++g) {
     const std::size_t i = g % 20, k = g / 20;
     if (i >= 6 && i <= 8 && k >= 11 && k <= 14) continue;
-    ASSERT_EQ(cut.positions[v], full.positions[g]) << g;
-    ++v;
+    ASSERT_EQ(cut.positions[grid_index.size()], full.positions[g]) << g;
+    ASSERT_EQ(cut.normals[grid_index.size()], full.normals[g]) << g;
+    grid_index.push_back(g);
   }
+  std::size_t t = 0;
+  for (std::size_t c = 0; c < trim.size(); ++c) {
+    if (trim[c] != 0) continue;
+    for (std::size_t n = 2 * c; n < 2 * c + 2; ++n, ++t)
+      for (int corner = 0; corner < 3; ++corner)
+        ASSERT_EQ(grid_index[cut.triangles[t][corner]], full.triangles[n][corner]) << "cell " << c;
+  }
+  EXPECT_EQ(t, cut.triangle_count());
   // On another grid a cell is trimmed where the layer's cell holding its centre is.
   const Mesh finer = pdef::to_mesh(with, pdef::Resolution{39, 59}).value(); // two cells a side per cell
   EXPECT_EQ(finer.triangle_count(), 2u * 38 * 58 - 2 * 4 * 20);
@@ -400,6 +409,17 @@ TEST(PdefResidual, HostileTrimsAreRefusedWithTheirOffsets) {
 TEST(PdefResidual, EncodingRefusesBadFields) {
   EXPECT_FALSE(pdef::code_residual(pde::Displacement{1, 5, std::vector<double>(5)}));
   EXPECT_FALSE(pdef::code_residual(pde::Displacement{600, 600, std::vector<double>(360000)}));
+  // ... unless asked to allow more; after curves too short to justify them, a reader refuses the file.
+  const std::string curves = curves_file();
+  ASSERT_LT(pdef::max_residual_nodes(curves.size()), 360000u);
+  const pdef::CodedResidual big =
+      pdef::code_residual(pde::Displacement{600, 600, std::vector<double>(360000, 0.25)},
+                          {.max_nodes = 360000})
+          .value();
+  const Result<pdef::Face> refused =
+      pdef::decode(pdef::with_residual(curves, big, curves.size() + 100).value());
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, ErrorCode::CountTooLarge);
   EXPECT_FALSE(pdef::code_residual(pde::Displacement{4, 4, std::vector<double>(15)}));
   pde::Displacement nan{4, 4, std::vector<double>(16)};
   nan.values[3] = std::nan("");

@@ -48,7 +48,17 @@ struct Residual {
 
 struct ResidualOptions {
   double step_mm = kDefaultResidualStep; //!< the coefficients' finest quantisation step (mm)
+  //! The most nodes the grid may have: `kFreeResidualNodes`, or `max_residual_nodes(curves)` for a layer
+  //! after a curve-only file of that many bytes.
+  std::size_t max_nodes = kFreeResidualNodes;
 };
+
+//! The most nodes a layer after a curve-only file of `curves_bytes` may have so that every prefix of the
+//! file holding the layer's header decodes (a reader allows 2¹⁸ + 256 per byte it holds; the header's
+//! fewest bytes, 16, counted).
+[[nodiscard]] constexpr std::size_t max_residual_nodes(std::size_t curves_bytes) {
+  return kFreeResidualNodes + kResidualNodesPerByte * (curves_bytes + 16);
+}
 
 //! A layer coded whole: its settings and the full embedded streams (`with_residual` cuts them to a budget).
 struct CodedResidual {
@@ -65,7 +75,7 @@ struct ResidualCut {
 };
 
 //! Codes `field` (offsets in mm). Errors: `InvalidArgument` for a grid below 2 × 2, above
-//! `kMaxResidualSide` a side or `kFreeResidualNodes` nodes, values that do not match it, or a step outside
+//! `kMaxResidualSide` a side or `options.max_nodes` nodes, values that do not match it, or a step outside
 //! 2⁻²⁰ … 64 mm; `NonFinite` for a NaN or infinite offset.
 [[nodiscard]] Result<CodedResidual> code_residual(const pde::Displacement& field,
                                                   const ResidualOptions& options = {});

@@ -76,6 +76,13 @@ struct TrimOptions {
 [[nodiscard]] std::vector<std::uint8_t> trim(const pde::Surface& surface, const Mesh& scan,
                                              const Measured& measured, const TrimOptions& options = {});
 
+//! The offsets to code for `measured` with `trimmed` (`trim`'s cells): the measured value at every node a
+//! kept cell uses, filled smoothly (`fill`) at the nodes only trimmed cells use — their values shape no
+//! surface once trimmed, and where a writer leaves the trim out (too few bytes) the surface there is the
+//! smooth fill instead of the crossings of a fold or a cavity.
+[[nodiscard]] pde::Displacement kept_field(const Measured& measured,
+                                           const std::vector<std::uint8_t>& trimmed);
+
 //! Replaces the values where `found` is 0 by a smooth continuation of the others (a pull-push pyramid
 //! then relaxation towards a harmonic fill); all zero when nothing was found.
 void fill(pde::Displacement& field, const std::vector<std::uint8_t>& found);
