@@ -146,10 +146,12 @@ int main(int argc, char** argv) {
         const auto t0 = std::chrono::steady_clock::now();
         const Result<Mesh> m = pdef::to_mesh(whole);
         untrimmed_ms = std::min(
-            untrimmed_ms, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+            untrimmed_ms,
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       }
-      fmt::print("  decode {:.2f} ms, mesh {:.2f} ms ({:.2f} ms without its trim; {} vertices, {} triangles)\n",
-                 parse, meshing, untrimmed_ms, decoded->vertex_count(), decoded->triangle_count());
+      fmt::print(
+          "  decode {:.2f} ms, mesh {:.2f} ms ({:.2f} ms without its trim; {} vertices, {} triangles)\n",
+          parse, meshing, untrimmed_ms, decoded->vertex_count(), decoded->triangle_count());
     }
     Mesh mesh = align::to_canonical(*decoded, canonical.frame);
     Result<pde::Surface> surface = pdef::surface_of(*face);
