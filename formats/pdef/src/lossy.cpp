@@ -180,10 +180,38 @@ void dequantise(const Quantised& q, const Grid& grid, Face& face) {
 namespace {
 
 // Points of one surface (`from`) with what the other (`to`) has at the same (u, v): its point and tangents.
+// The scattered points of the finer search, gathered from many small grids.
 struct Pairs {
-  std::vector<double> u, v;
-  std::vector<Vec3> from, to, to_u, to_v;
-  std::vector<bool> border; // on or next to the grid's border
+  std::vector<double> us, vs;
+  std::vector<Vec3> froms, tos, to_us, to_vs;
+  std::vector<bool> borders; // on or next to the border of the surfaces' domain
+  [[nodiscard]] std::size_t size() const { return froms.size(); }
+  [[nodiscard]] double u(std::size_t i) const { return us[i]; }
+  [[nodiscard]] double v(std::size_t i) const { return vs[i]; }
+  [[nodiscard]] const Vec3& from(std::size_t i) const { return froms[i]; }
+  [[nodiscard]] const Vec3& to(std::size_t i) const { return tos[i]; }
+  [[nodiscard]] const Vec3& to_u(std::size_t i) const { return to_us[i]; }
+  [[nodiscard]] const Vec3& to_v(std::size_t i) const { return to_vs[i]; }
+  [[nodiscard]] bool border(std::size_t i) const { return borders[i]; }
+};
+
+// The same over the coarse grid us × vs, read from the surfaces' grids in place (point (i, k) is k·nu + i):
+// no copy of hundreds of thousands of points per grid tried.
+struct GridPairs {
+  std::span<const double> us, vs;
+  const pde::Grid *p, *q, *qu, *qv; // from; to, its tangents
+  [[nodiscard]] std::size_t size() const { return p->points.size(); }
+  [[nodiscard]] double u(std::size_t i) const { return us[i % us.size()]; }
+  [[nodiscard]] double v(std::size_t i) const { return vs[i / us.size()]; }
+  [[nodiscard]] const Vec3& from(std::size_t i) const { return p->points[i]; }
+  [[nodiscard]] const Vec3& to(std::size_t i) const { return q->points[i]; }
+  [[nodiscard]] const Vec3& to_u(std::size_t i) const { return qu->points[i]; }
+  [[nodiscard]] const Vec3& to_v(std::size_t i) const { return qv->points[i]; }
+  // On the grid's outer two rows and columns.
+  [[nodiscard]] bool border(std::size_t at) const {
+    const std::size_t i = at % us.size(), k = at / us.size();
+    return i < 2 || i + 2 >= us.size() || k < 2 || k + 2 >= vs.size();
+  }
 };
 
 // The points of `from` on the grid us × vs, with the point and tangents of `to` at the same (u, v),
@@ -193,23 +221,16 @@ void evaluate_pairs(const pde::Surface& from, const pde::Surface& to, std::span<
                     Pairs& out) {
   const pde::Grid p = from.evaluate(us, vs), q = to.evaluate(us, vs);
   const pde::Grid qu = to.evaluate(us, vs, pde::Derivative::U), qv = to.evaluate(us, vs, pde::Derivative::V);
-  if (out.u.empty()) { // the coarse grid: one allocation each
-    for (auto* v : {&out.u, &out.v})
-      v->reserve(p.points.size());
-    for (auto* v : {&out.from, &out.to, &out.to_u, &out.to_v})
-      v->reserve(p.points.size());
-    out.border.reserve(p.points.size());
-  }
   for (std::size_t k = 0; k < vs.size(); ++k)
     for (std::size_t i = 0; i < us.size(); ++i) {
       const std::size_t at = k * us.size() + i;
-      out.u.push_back(us[i]);
-      out.v.push_back(vs[k]);
-      out.from.push_back(p.points[at]);
-      out.to.push_back(q.points[at]);
-      out.to_u.push_back(qu.points[at]);
-      out.to_v.push_back(qv.points[at]);
-      out.border.push_back(border(i, k));
+      out.us.push_back(us[i]);
+      out.vs.push_back(vs[k]);
+      out.froms.push_back(p.points[at]);
+      out.tos.push_back(q.points[at]);
+      out.to_us.push_back(qu.points[at]);
+      out.to_vs.push_back(qv.points[at]);
+      out.borders.push_back(border(i, k));
     }
 }
 
@@ -218,28 +239,29 @@ void evaluate_pairs(const pde::Surface& from, const pde::Surface& to, std::span<
 // |tangential part|² / 2, curvature below 1/mm): the estimate and how far off it may be. On the border the
 // nearest point may lie on the surface's edge, off its tangent plane: there the estimate is the distance at
 // the same (u, v), an upper bound.
-void estimate(const Pairs& p, std::vector<double>& estimate, std::vector<double>& margin) {
-  estimate.resize(p.from.size());
-  margin.resize(p.from.size());
-  for (std::size_t i = 0; i < p.from.size(); ++i) {
-    const Vec3 d = p.from[i] - p.to[i];
-    const Vec3 n = p.to_u[i].cross(p.to_v[i]);
+template <class P> void estimate(const P& p, std::vector<double>& estimate, std::vector<double>& margin) {
+  estimate.resize(p.size());
+  margin.resize(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3 d = p.from(i) - p.to(i);
+    const Vec3 n = p.to_u(i).cross(p.to_v(i));
     const double length = n.norm();
-    estimate[i] = length > 0 && !p.border[i] ? std::abs(d.dot(n)) / length : d.norm();
+    estimate[i] = length > 0 && !p.border(i) ? std::abs(d.dot(n)) / length : d.norm();
     margin[i] = std::min(kMaxMargin, 0.5 * (d.squaredNorm() - estimate[i] * estimate[i]) + 1e-4);
   }
 }
 
 // The largest distance of the points to the other surface: those whose estimate could reach the largest
 // found are projected onto it (`distance_to`). Stops early above `limit`.
-double largest(const Pairs& p, const pde::Surface& to, double limit) {
-  if (p.from.empty()) return 0;
-  std::vector<double> e, m;
-  estimate(p, e, m);
+// `e` and `m`: the points' estimates and margins (`estimate`).
+template <class P>
+double largest(const P& p, const std::vector<double>& e, const std::vector<double>& m, const pde::Surface& to,
+               double limit) {
+  if (p.size() == 0) return 0;
   const double step_u = to.u_max() / static_cast<double>(to.knots().size() - 1);
   const double step_v = std::numbers::pi / static_cast<double>(to.sample_count() - 1);
   const auto distance = [&](std::size_t i) {
-    return distance_to(to, p.from[i], p.u[i], p.v[i], step_u, step_v);
+    return distance_to(to, p.from(i), p.u(i), p.v(i), step_u, step_v);
   };
   // The point estimated farthest first: only points that could beat it are sorted and projected.
   const auto top = static_cast<std::size_t>(std::ranges::max_element(e) - e.begin());
@@ -282,11 +304,10 @@ int check_density(std::size_t curves, std::size_t samples, std::size_t columns) 
   return 0;
 }
 
-double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit, int density) {
+CheckGrid::CheckGrid(const pde::Surface& reference, int density) {
   if (density < 1) throw std::invalid_argument("pdef::detail::surface_error: a density of at least 1");
-  // A coarse grid first: `density` points per curve interval across and per sample interval along.
+  // A coarse grid: `density` points per curve interval across and per sample interval along.
   const std::vector<double>& knots = reference.knots();
-  std::vector<double> us, vs;
   for (std::size_t j = 0; j + 1 < knots.size(); ++j)
     for (int i = 0; i < density; ++i)
       us.push_back(knots[j] + (knots[j + 1] - knots[j]) * i / density);
@@ -297,28 +318,47 @@ double surface_error(const pde::Surface& reference, const pde::Surface& decoded,
       vs.push_back(std::numbers::pi * (static_cast<double>(k) + static_cast<double>(i) / density) /
                    static_cast<double>(intervals));
   vs.push_back(std::numbers::pi);
-  const auto grid_border = [&](std::size_t i, std::size_t k) {
-    return i < 2 || i + 2 >= us.size() || k < 2 || k + 2 >= vs.size();
-  };
+  x = reference.evaluate(us, vs);
+  xu = reference.evaluate(us, vs, pde::Derivative::U);
+  xv = reference.evaluate(us, vs, pde::Derivative::V);
+}
+
+double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit, int density) {
+  return surface_error(reference, CheckGrid(reference, density), decoded, limit);
+}
+
+double surface_error(const pde::Surface& reference, const CheckGrid& grid, const pde::Surface& decoded,
+                     double limit) {
+  const std::vector<double>&us = grid.us, &vs = grid.vs;
   const auto domain_border = [&](double u, double v) {
     return u <= us[1] || u >= us[us.size() - 2] || v <= vs[1] || v >= vs[vs.size() - 2];
   };
 
   double worst = 0;
+  pde::Grid at_decoded;
   for (const bool back : {false, true}) { // decoded to reference, then reference to decoded
     const pde::Surface& from = back ? reference : decoded;
     const pde::Surface& to = back ? decoded : reference;
-    Pairs coarse;
-    evaluate_pairs(from, to, us, vs, grid_border, coarse);
-    const double found = largest(coarse, to, limit);
+    // The reference's side of the coarse grid is the same for every grid tried (`grid`); the decoded
+    // surface's points serve both ways.
+    pde::Grid at_u, at_v;
+    if (!back) {
+      at_decoded = decoded.evaluate(us, vs);
+    } else {
+      at_u = decoded.evaluate(us, vs, pde::Derivative::U);
+      at_v = decoded.evaluate(us, vs, pde::Derivative::V);
+    }
+    const GridPairs coarse = back ? GridPairs{us, vs, &grid.x, &at_decoded, &at_u, &at_v}
+                                  : GridPairs{us, vs, &at_decoded, &grid.x, &grid.xu, &grid.xv};
+    std::vector<double> e, m;
+    estimate(coarse, e, m);
+    const double found = largest(coarse, e, m, to, limit);
     worst = std::max(worst, found);
     if (found > limit) return found;
     if (found < kRefineShare * limit) continue;
     // The distance between two such surfaces has peaks about 1 mm wide across the curves where they bend
     // sharply, which the coarse grid (0.2-0.5 mm apart) may miss by a few per cent: near the limit, the
     // cells around the highest coarse points are searched again 4 times finer.
-    std::vector<double> e, m;
-    estimate(coarse, e, m);
     Pairs fine;
     for (std::size_t at = 0; at < e.size(); ++at) {
       if (e[at] + m[at] < kRefineShare * limit) continue;
@@ -340,7 +380,9 @@ double surface_error(const pde::Surface& reference, const pde::Surface& decoded,
           from, to, std::span(su.data(), nu), std::span(sv.data(), nv),
           [&](std::size_t ii, std::size_t kk) { return domain_border(su[ii], sv[kk]); }, fine);
     }
-    const double refined = largest(fine, to, limit);
+    std::vector<double> fine_e, fine_m;
+    estimate(fine, fine_e, fine_m);
+    const double refined = largest(fine, fine_e, fine_m, to, limit);
     worst = std::max(worst, refined);
     if (refined > limit) return refined;
   }
@@ -398,6 +440,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
   if (!reference)
     return make_error(ErrorCode::InvalidArgument,
                       "pdef: the face's surface cannot be built: " + reference.error().message);
+  std::optional<CheckGrid> check_grid; // made at the first surface check
   const double frame_part = plan.frame64 ? 0.0 : frame_error;
   // The first grid that keeps every sample within e is tried first; each that fails is followed by one
   // finer in proportion to how far it failed (the error grows about linearly with the step), at least 2 %
@@ -425,7 +468,8 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     Result<pde::Surface> surface = pde::Surface::build(decoded.curves, decoded.pde);
     if (!surface) return c;
     spent += 8 * cost;
-    c.surface = surface_error(*reference, *surface, limit, density);
+    if (!check_grid) check_grid.emplace(*reference, density);
+    c.surface = surface_error(*reference, *check_grid, *surface, limit);
     c.passed = c.surface <= limit;
     if (!c.passed) c.ratio = limit / c.surface; // c.surface is where the search stopped: at most the error
     return c;

@@ -42,6 +42,19 @@ void dequantise(const Quantised& q, const Grid& grid, Face& face);
 [[nodiscard]] double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit,
                                    int density);
 
+//! The coarse grid of `surface_error` at `density` and the reference surface's points and tangents on it:
+//! the same for every grid `plan_lossy` tries, so made once (3 of the 8 evaluations a check made).
+//! \throw std::invalid_argument for a density below 1
+struct CheckGrid {
+  CheckGrid(const pde::Surface& reference, int density);
+  std::vector<double> us, vs;
+  pde::Grid x, xu, xv;
+};
+
+//! `surface_error` with the reference's side made once (`grid`, made from `reference`).
+[[nodiscard]] double surface_error(const pde::Surface& reference, const CheckGrid& grid,
+                                   const pde::Surface& decoded, double limit);
+
 //! The density `plan_lossy` checks a face of that size with: 8, or fewer for documents so large that the
 //! checks would exceed their budget (`columns`: the cosines each point sums); 0 when even one point per
 //! interval would.
