@@ -1,4 +1,5 @@
 #include "pdeface/pipeline/encode.hpp"
+#include "encode_check.hpp"
 #include "encode_residual.hpp"
 #include "encode_texture.hpp"
 
@@ -82,7 +83,7 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
   if (!decoded) return named(std::move(decoded).error());
   Result<Mesh> mesh = pdef::to_mesh(*decoded, std::nullopt, request.source);
   if (!mesh) return named(std::move(mesh).error());
-  Result<metrics::SelfCheck> check = metrics::checked(
+  Result<metrics::SelfCheck> check = encode_check(
       canonical.mesh, out.profiles, align::to_canonical(*mesh, out.alignment.frame),
       out.residual ? with_scans_folds(*request.check, canonical.mesh, out.profiles.mask) : *request.check,
       request.force, request.source);

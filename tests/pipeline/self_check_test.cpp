@@ -2,7 +2,10 @@
 // the landmarks and the scan give, not the curves' own region, and refused when it is off.
 
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/align/frame.hpp"
 #include "pdeface/metrics/fidelity.hpp"
+#include "pdeface/pdef/mesh.hpp"
+#include "pdeface/pipeline/encode.hpp"
 #include "pdeface/pipeline/reconstruct.hpp"
 
 #include <gtest/gtest.h>
@@ -92,6 +95,45 @@ TEST(SelfCheck, AFoldAndASurfaceOffTheScanFail) {
   ASSERT_TRUE(c);
   EXPECT_NE(c->summary().find("mean distance to the scan"), std::string::npos) << c->summary();
   EXPECT_GT(c->mean_mm, 2.0);
+}
+
+// `encode` checks the file it wrote on a coarser grid than `metrics::checked` (a sample every 1 mm each way,
+// no evaluation profiles): its figures agree with the full check's on the decoded file, and a file of 4
+// curves (about 3 mm from the scan on average) is refused, or with `force` returned with its failures.
+TEST(SelfCheck, EncodeChecksWhatItWroteAndRefusesAFileOffTheScan) {
+  const Mesh face = sample_face();
+  const Result<align::Alignment> alignment = align::align_scan(face);
+  ASSERT_TRUE(alignment) << alignment.error().to_string();
+  EncodeRequest request{.profiles = {.ratio = 0.1}, .source = "sample"};
+  const Result<EncodeOutcome> good = encode_aligned(face, *alignment, request);
+  ASSERT_TRUE(good) << good.error().to_string();
+  ASSERT_TRUE(good->check);
+  EXPECT_TRUE(good->check->passed()) << good->check->summary();
+  const Result<pdef::Face> decoded = pdef::decode(good->encoded.bytes);
+  ASSERT_TRUE(decoded);
+  const Result<Mesh> mesh = pdef::to_mesh(*decoded);
+  ASSERT_TRUE(mesh);
+  const CanonicalScan canonical = canonical_scan(face, *alignment);
+  const Result<metrics::SelfCheck> full =
+      metrics::checked(canonical.mesh, good->profiles, align::to_canonical(*mesh, alignment->frame), {}, false,
+                       "sample");
+  ASSERT_TRUE(full) << full.error().to_string();
+  EXPECT_NEAR(good->check->mean_mm, full->mean_mm, 0.01 + 0.1 * full->mean_mm);
+  EXPECT_NEAR(good->check->coverage, full->coverage, 0.01);
+  EXPECT_EQ(good->check->facing_away, full->facing_away);
+
+  request.profiles.planes.curves = 4;
+  const Result<EncodeOutcome> bad = encode_aligned(face, *alignment, request);
+  ASSERT_FALSE(bad) << bad->check->summary();
+  EXPECT_EQ(bad.error().code, ErrorCode::SelfCheck);
+  EXPECT_EQ(bad.error().source, "sample");
+  EXPECT_NE(bad.error().message.find("mean distance to the scan"), std::string::npos) << bad.error().message;
+  request.force = true;
+  const Result<EncodeOutcome> forced = encode_aligned(face, *alignment, request);
+  ASSERT_TRUE(forced) << forced.error().to_string();
+  ASSERT_TRUE(forced->check);
+  EXPECT_FALSE(forced->check->passed());
+  EXPECT_GT(forced->check->mean_mm, 1.0);
 }
 
 } // namespace
