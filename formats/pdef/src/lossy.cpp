@@ -324,33 +324,33 @@ CheckGrid::CheckGrid(const pde::Surface& reference, int density) {
 }
 
 double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit, int density) {
-  return surface_error(reference, CheckGrid(reference, density), decoded, limit);
+  CheckScratch scratch;
+  return surface_error(reference, CheckGrid(reference, density), decoded, limit, scratch);
 }
 
 double surface_error(const pde::Surface& reference, const CheckGrid& grid, const pde::Surface& decoded,
-                     double limit) {
+                     double limit, CheckScratch& scratch) {
   const std::vector<double>&us = grid.us, &vs = grid.vs;
   const auto domain_border = [&](double u, double v) {
     return u <= us[1] || u >= us[us.size() - 2] || v <= vs[1] || v >= vs[vs.size() - 2];
   };
 
   double worst = 0;
-  pde::Grid at_decoded;
+  pde::Grid &at_decoded = scratch.x, &at_u = scratch.xu, &at_v = scratch.xv;
+  std::vector<double>&e = scratch.e, &m = scratch.m;
   for (const bool back : {false, true}) { // decoded to reference, then reference to decoded
     const pde::Surface& from = back ? reference : decoded;
     const pde::Surface& to = back ? decoded : reference;
     // The reference's side of the coarse grid is the same for every grid tried (`grid`); the decoded
     // surface's points serve both ways.
-    pde::Grid at_u, at_v;
     if (!back) {
-      at_decoded = decoded.evaluate(us, vs);
+      decoded.evaluate(us, vs, pde::Derivative::None, at_decoded);
     } else {
-      at_u = decoded.evaluate(us, vs, pde::Derivative::U);
-      at_v = decoded.evaluate(us, vs, pde::Derivative::V);
+      decoded.evaluate(us, vs, pde::Derivative::U, at_u);
+      decoded.evaluate(us, vs, pde::Derivative::V, at_v);
     }
     const GridPairs coarse = back ? GridPairs{us, vs, &grid.x, &at_decoded, &at_u, &at_v}
                                   : GridPairs{us, vs, &at_decoded, &grid.x, &grid.xu, &grid.xv};
-    std::vector<double> e, m;
     estimate(coarse, e, m);
     const double found = largest(coarse, e, m, to, limit);
     worst = std::max(worst, found);
@@ -441,6 +441,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     return make_error(ErrorCode::InvalidArgument,
                       "pdef: the face's surface cannot be built: " + reference.error().message);
   std::optional<CheckGrid> check_grid; // made at the first surface check
+  CheckScratch scratch;
   const double frame_part = plan.frame64 ? 0.0 : frame_error;
   // The first grid that keeps every sample within e is tried first; each that fails is followed by one
   // finer in proportion to how far it failed (the error grows about linearly with the step), at least 2 %
@@ -469,7 +470,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     if (!surface) return c;
     spent += 8 * cost;
     if (!check_grid) check_grid.emplace(*reference, density);
-    c.surface = surface_error(*reference, *check_grid, *surface, limit);
+    c.surface = surface_error(*reference, *check_grid, *surface, limit, scratch);
     c.passed = c.surface <= limit;
     if (!c.passed) c.ratio = limit / c.surface; // c.surface is where the search stopped: at most the error
     return c;

@@ -51,9 +51,16 @@ struct CheckGrid {
   pde::Grid x, xu, xv;
 };
 
+//! What one check of the decoded surface on the coarse grid fills: kept between the grids `plan_lossy`
+//! tries, so that their memory is allocated (and faulted in) once.
+struct CheckScratch {
+  pde::Grid x, xu, xv;          // the decoded surface's points and tangents
+  std::vector<double> e, m;     // each point's estimated distance and how far off it may be
+};
+
 //! `surface_error` with the reference's side made once (`grid`, made from `reference`).
 [[nodiscard]] double surface_error(const pde::Surface& reference, const CheckGrid& grid,
-                                   const pde::Surface& decoded, double limit);
+                                   const pde::Surface& decoded, double limit, CheckScratch& scratch);
 
 //! The density `plan_lossy` checks a face of that size with: 8, or fewer for documents so large that the
 //! checks would exceed their budget (`columns`: the cosines each point sums); 0 when even one point per

@@ -33,14 +33,22 @@ bool mirrored(std::span<const double> vs) {
 } // namespace
 
 Grid Surface::evaluate(std::span<const double> us, std::span<const double> vs, Derivative derivative) const {
+  Grid grid;
+  evaluate(us, vs, derivative, grid);
+  return grid;
+}
+
+void Surface::evaluate(std::span<const double> us, std::span<const double> vs, Derivative derivative,
+                       Grid& grid) const {
   for (double u : us)
     if (!(u >= 0 && u <= u_max())) throw std::invalid_argument("pde: u outside [0, u_max()] or not finite");
   for (double v : vs)
     if (!std::isfinite(v)) throw std::invalid_argument("pde: v is not finite");
   const auto nu = static_cast<Eigen::Index>(us.size()), nv = static_cast<Eigen::Index>(vs.size());
-  Grid grid{static_cast<std::size_t>(nu), static_cast<std::size_t>(nv),
-            std::vector<Vec3>(static_cast<std::size_t>(nu * nv))};
-  if (grid.points.empty()) return grid;
+  grid.u_count = static_cast<std::size_t>(nu);
+  grid.v_count = static_cast<std::size_t>(nv);
+  grid.points.resize(static_cast<std::size_t>(nu * nv));
+  if (grid.points.empty()) return;
 
   // X = Σ_n A_n(u) cos(n v) = E + O, the sums over even and odd n. On a grid whose v come in pairs
   // (v, π − v), cos(n(π − v)) = (−1)^n cos(n v) gives X(π − v) = E − O (for ∂X/∂v, −n sin(n v): O − E),
@@ -103,7 +111,6 @@ Grid Surface::evaluate(std::span<const double> us, std::span<const double> vs, D
       }
     }
   }
-  return grid;
 }
 
 Grid Surface::evaluate(std::size_t u_count, std::size_t v_count) const {

@@ -128,6 +128,10 @@ public:
   //! \throw std::invalid_argument for u outside the domain or a non-finite coordinate
   [[nodiscard]] Grid evaluate(std::span<const double> us, std::span<const double> vs,
                               Derivative derivative = Derivative::None) const;
+  //! The same into `out`, reusing its memory (a caller evaluating many grids of one size allocates once).
+  //! \throw std::invalid_argument for u outside the domain or a non-finite coordinate
+  void evaluate(std::span<const double> us, std::span<const double> vs, Derivative derivative,
+                Grid& out) const;
   //! X on u_count × v_count points spread evenly over [0, u_max()] × [0, π].
   //! \throw std::invalid_argument when a count is below 2
   [[nodiscard]] Grid evaluate(std::size_t u_count, std::size_t v_count) const;
