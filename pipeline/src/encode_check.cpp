@@ -10,8 +10,9 @@
 
 namespace pdeface::pipeline {
 
-Result<metrics::SelfCheck> encode_check(const Mesh& scan, const slice::ProfileSet& profiles, const Mesh& result,
-                                        const metrics::CheckLimits& limits, bool force, std::string_view source) {
+Result<metrics::SelfCheck> encode_check(const Mesh& scan, const slice::ProfileSet& profiles,
+                                        const Mesh& result, const metrics::CheckLimits& limits, bool force,
+                                        std::string_view source) {
   const auto refused = [&](const std::string& why) -> Result<metrics::SelfCheck> {
     if (force) {
       const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -54,7 +55,8 @@ Result<metrics::SelfCheck> encode_check(const Mesh& scan, const slice::ProfileSe
         ++count;
       }
     fidelity.to_scan.samples = count;
-    fidelity.to_scan.mean = count > 0 ? sum / static_cast<double>(count) : std::numeric_limits<double>::quiet_NaN();
+    fidelity.to_scan.mean =
+        count > 0 ? sum / static_cast<double>(count) : std::numeric_limits<double>::quiet_NaN();
   }
   metrics::SelfCheck check = metrics::self_check(fidelity, metrics::facing_away(result, mask), limits);
   if (!check.passed() && !force) return refused(check.summary());

@@ -1,8 +1,8 @@
 // The self-check every result passes before it is written: measured against the scan on a face mask that
 // the landmarks and the scan give, not the curves' own region, and refused when it is off.
 
-#include "pdeface/core/sample_face.hpp"
 #include "pdeface/align/frame.hpp"
+#include "pdeface/core/sample_face.hpp"
 #include "pdeface/metrics/fidelity.hpp"
 #include "pdeface/pdef/mesh.hpp"
 #include "pdeface/pipeline/encode.hpp"
@@ -114,9 +114,8 @@ TEST(SelfCheck, EncodeChecksWhatItWroteAndRefusesAFileOffTheScan) {
   const Result<Mesh> mesh = pdef::to_mesh(*decoded);
   ASSERT_TRUE(mesh);
   const CanonicalScan canonical = canonical_scan(face, *alignment);
-  const Result<metrics::SelfCheck> full =
-      metrics::checked(canonical.mesh, good->profiles, align::to_canonical(*mesh, alignment->frame), {}, false,
-                       "sample");
+  const Result<metrics::SelfCheck> full = metrics::checked(
+      canonical.mesh, good->profiles, align::to_canonical(*mesh, alignment->frame), {}, false, "sample");
   ASSERT_TRUE(full) << full.error().to_string();
   EXPECT_NEAR(good->check->mean_mm, full->mean_mm, 0.01 + 0.1 * full->mean_mm);
   EXPECT_NEAR(good->check->coverage, full->coverage, 0.01);

@@ -54,8 +54,8 @@ struct CheckGrid {
 //! What one check of the decoded surface on the coarse grid fills: kept between the grids `plan_lossy`
 //! tries, so that their memory is allocated (and faulted in) once.
 struct CheckScratch {
-  pde::Grid x, xu, xv;          // the decoded surface's points and tangents
-  std::vector<double> e, m;     // each point's estimated distance and how far off it may be
+  pde::Grid x, xu, xv;      // the decoded surface's points and tangents
+  std::vector<double> e, m; // each point's estimated distance and how far off it may be
 };
 
 //! `surface_error` with the reference's side made once (`grid`, made from `reference`).
