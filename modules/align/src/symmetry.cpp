@@ -98,7 +98,7 @@ NearGrid::NearGrid(std::span<const Vec3> points, double cell) : points_(points),
     dims_ = dims_for(cell_);
   }
   origin_ = lo - Vec3::Constant(kMargin * cell_);
-  const auto [nx, ny, nz] = dims_;
+  const int nx = dims_[0], ny = dims_[1], nz = dims_[2];
   const std::size_t total =
       static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny) * static_cast<std::size_t>(nz);
   constexpr float kNone = std::numeric_limits<float>::infinity();
