@@ -64,5 +64,34 @@ TEST(Symmetry, TrimmedMirrorRmsIsItsDefinitionOnGoodAndBadPlanes) {
   EXPECT_TRUE(std::isinf(mirror_rms(mirror_of(planes[0]), {}, index, 0.7)));
 }
 
+// The grid's distance is a point's distance (never less than the nearest's), the nearest's for queries near
+// the set (within a cell: what ranks good planes), and close to it far away (where only "far" matters).
+TEST(Symmetry, NearGridDistancesAreTheNearestPointsNearTheSet) {
+  const Mesh face = sample_face({.spacing_mm = 3.0});
+  const std::vector<Vec3> sample = voxel_subsample(face.positions, 3.0);
+  const PointIndex index(sample);
+  const NearGrid grid(sample, 3.0);
+  std::size_t near = 0, exact = 0;
+  for (std::size_t i = 0; i < face.positions.size(); i += 7)
+    for (const Vec3& shift :
+         {Vec3(0.4, -0.7, 1.1), Vec3(-2.0, 1.5, 0.5), Vec3(15.0, -20.0, 30.0), Vec3(0.0, 0.0, 400.0)}) {
+      const Vec3 q = face.positions[i] + shift;
+      const double want = index.nearest(q).distance;
+      const double got = grid.distance(q);
+      EXPECT_GE(got, want - 1e-3);
+      if (shift.norm() < 3.0) {
+        ++near;
+        if (got - want < 1e-3) ++exact;
+        EXPECT_LT(got - want, 0.5 * grid.cell());
+      } else {
+        EXPECT_LT(got, want + 0.25 * want + grid.cell());
+      }
+    }
+  EXPECT_GT(static_cast<double>(exact), 0.95 * static_cast<double>(near));
+  const Mirror off = mirror_of({Vec3(1.0, 0.1, 0.0).normalized(), 2.0});
+  const std::vector<Vec3> probe = thin(sample, 300);
+  EXPECT_NEAR(mirror_rms(off, probe, grid), mirror_rms(off, probe, index), 0.05);
+}
+
 } // namespace
 } // namespace pdeface::align::detail

@@ -58,9 +58,10 @@ struct Scene {
   double size = 0.0;        // bounding-box diagonal
   std::vector<Vec3> sample; // one point per voxel of size / 100
   std::optional<PointIndex> coarse;
-  std::vector<Vec3> probe;      // 300 of the sample, to score candidate planes
-  std::vector<Vec3> fit_points; // 1000 of the sample, to refine them
-  detail::Loops loops;          // the mesh's boundaries: eyes and mouths may be holes
+  std::optional<detail::NearGrid> near; // the sample's distances by look-up, to score candidate planes
+  std::vector<Vec3> probe;              // 300 of the sample, to score candidate planes
+  std::vector<Vec3> fit_points;         // 1000 of the sample, to refine them
+  detail::Loops loops;                  // the mesh's boundaries: eyes and mouths may be holes
 };
 
 Scene prepare(const Mesh& scan, const DetectOptions& options) {
@@ -70,8 +71,10 @@ Scene prepare(const Mesh& scan, const DetectOptions& options) {
   s.index.emplace(s.mesh.positions);
   s.spacing = detail::median_spacing(s.mesh.positions, *s.index);
   s.size = bounding_box(s.mesh).diagonal();
-  s.sample = detail::voxel_subsample(s.mesh.positions, std::max(s.size / 100.0, s.spacing));
+  const double voxel = std::max(s.size / 100.0, s.spacing);
+  s.sample = detail::voxel_subsample(s.mesh.positions, voxel);
   s.coarse.emplace(s.sample);
+  s.near.emplace(s.sample, voxel);
   s.probe = detail::thin(s.sample, 300);
   s.fit_points = detail::thin(s.sample, 1000);
   s.loops = detail::boundary_loops(s.mesh.triangles);
@@ -213,7 +216,7 @@ std::vector<Plane> global_planes(const Scene& s, int directions, std::size_t cou
 
   std::vector<std::pair<double, Vec3>> scored;
   for (const Vec3& n : detail::fibonacci_directions(directions))
-    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), s.probe, *s.coarse), n);
+    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), s.probe, *s.near), n);
   std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
 
   const double distinct = std::cos(0.17); // 10 degrees

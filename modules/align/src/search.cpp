@@ -9,7 +9,6 @@
 #include <cmath>
 #include <functional>
 #include <numeric>
-#include <unordered_map>
 
 namespace pdeface::align::detail {
 namespace {
@@ -218,43 +217,68 @@ repaired(std::array<std::optional<Vec3>, 7> local,
 } // namespace
 
 Loops boundary_loops(std::span<const Triangle> triangles) {
-  // Undirected edges used once.
-  std::unordered_map<std::uint64_t, int> uses;
-  uses.reserve(triangles.size() * 3);
-  const auto key = [](std::uint32_t a, std::uint32_t b) {
-    return (static_cast<std::uint64_t>(std::min(a, b)) << 32U) | std::max(a, b);
-  };
+  // Undirected edges used once, found without hashing: each edge is filed under its smaller vertex
+  // (counting sort), and a vertex's few edges are sorted and counted in place.
+  std::uint32_t top = 0;
   for (const Triangle& t : triangles)
-    for (int k = 0; k < 3; ++k)
-      ++uses[key(t[k], t[(k + 1) % 3])];
-  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> next;
-  for (const auto& [edge, count] : uses)
-    if (count == 1) {
-      const auto a = static_cast<std::uint32_t>(edge >> 32U);
-      const auto b = static_cast<std::uint32_t>(edge & 0xFFFFFFFFU);
-      next[a].push_back(b);
-      next[b].push_back(a);
+    top = std::max({top, t[0], t[1], t[2]});
+  const std::size_t n = triangles.empty() ? 0 : std::size_t{top} + 1;
+  const auto csr = [n](const auto& for_each_pair) {
+    std::vector<std::uint32_t> start(n + 1, 0);
+    for_each_pair([&](std::uint32_t a, std::uint32_t) { ++start[a + 1]; });
+    for (std::size_t v = 0; v < n; ++v)
+      start[v + 1] += start[v];
+    std::vector<std::uint32_t> to(start[n]);
+    std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+    for_each_pair([&](std::uint32_t a, std::uint32_t b) { to[fill[a]++] = b; });
+    return std::pair{std::move(start), std::move(to)};
+  };
+  auto [first, second] = csr([&](const auto& visit) {
+    for (const Triangle& t : triangles)
+      for (int k = 0; k < 3; ++k)
+        visit(std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3]));
+  });
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> once;
+  for (std::size_t v = 0; v < n; ++v) {
+    const auto begin = second.begin() + first[v], end = second.begin() + first[v + 1];
+    std::sort(begin, end);
+    for (auto it = begin; it != end;) {
+      auto same = it;
+      while (same != end && *same == *it)
+        ++same;
+      if (same - it == 1) once.emplace_back(static_cast<std::uint32_t>(v), *it);
+      it = same;
     }
+  }
+  // Their connected pieces.
+  const auto [start, next] = csr([&](const auto& visit) {
+    for (const auto& [a, b] : once) {
+      visit(a, b);
+      visit(b, a);
+    }
+  });
   Loops loops;
-  std::unordered_map<std::uint32_t, bool> seen;
-  for (const auto& [start, unused] : next) {
-    if (seen[start]) continue;
-    std::vector<std::uint32_t> loop, stack{start};
-    seen[start] = true;
+  std::vector<char> seen(n, 0);
+  std::vector<std::uint32_t> stack;
+  for (std::uint32_t v0 = 0; v0 < n; ++v0) {
+    if (seen[v0] || start[v0] == start[v0 + 1]) continue;
+    std::vector<std::uint32_t> loop;
+    stack.assign(1, v0);
+    seen[v0] = 1;
     while (!stack.empty()) {
       const std::uint32_t v = stack.back();
       stack.pop_back();
       loop.push_back(v);
-      for (std::uint32_t w : next[v])
-        if (!seen[w]) {
-          seen[w] = true;
+      for (std::uint32_t i = start[v]; i < start[v + 1]; ++i)
+        if (const std::uint32_t w = next[i]; !seen[w]) {
+          seen[w] = 1;
           stack.push_back(w);
         }
     }
-    std::ranges::sort(loop); // an order that does not depend on the hash map's
+    std::ranges::sort(loop);
     loops.push_back(std::move(loop));
   }
-  std::ranges::sort(loops, {}, [](const auto& l) { return l.front(); });
+  std::ranges::sort(loops, {}, [](const auto& l) { return l.front(); }); // already in this order
   return loops;
 }
 

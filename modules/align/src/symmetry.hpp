@@ -8,6 +8,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -29,6 +31,34 @@ struct Mirror {
 // Trimmed RMS distance from the mirrored points to the indexed ones: the best `keep` fraction counts,
 // so that an asymmetric cut, hair or a missing ear do not hide a good plane.
 [[nodiscard]] double mirror_rms(const Mirror& m, std::span<const Vec3> points, const PointIndex& index,
+                                double keep = 0.7);
+
+// A grid over a point set (its bounding box widened by two cells) whose every cell names a point of the
+// set near its centre: the nearest to the centre of those the cells around it name, handed on from cell to
+// cell in two raster passes (forward, then back). A distance from it is a look-up and a few subtractions
+// instead of a tree search, however far the query lies from the set (a wrong plane mirrors much of a scan
+// into the air, where a k-d tree search visits every leaf within that distance). A query outside the box is
+// answered from the nearest cell on its border.
+class NearGrid {
+public:
+  // \pre `points` is not empty and stays alive and unchanged while the grid is used; `cell` > 0 (it is
+  // made larger when the box would hold more than ~2M cells).
+  NearGrid(std::span<const Vec3> points, double cell);
+  // The distance from `q` to the nearest of the points the 8 cells around it name: never less than the
+  // distance to the nearest point, and equal to it for a query near the set in nearly every case.
+  [[nodiscard]] double distance(const Vec3& q) const;
+  [[nodiscard]] double cell() const { return cell_; }
+
+private:
+  std::span<const Vec3> points_;
+  Vec3 origin_; // the centre of cell (0, 0, 0)
+  double cell_ = 0.0;
+  std::array<int, 3> dims_{};
+  std::vector<Eigen::Vector3f> site_; // each cell's point, from origin_ (float: contiguous and small)
+};
+
+// The trimmed mirror RMS (as `mirror_rms`) with distances from a `NearGrid`: to rank many candidate planes.
+[[nodiscard]] double mirror_rms(const Mirror& m, std::span<const Vec3> points, const NearGrid& grid,
                                 double keep = 0.7);
 
 // Registration of the mirrored `points` onto `all` (indexed by `index`): trimmed ICP keeping the best
