@@ -16,6 +16,7 @@
 #include <functional>
 #include <numbers>
 #include <numeric>
+#include <optional>
 #include <stdexcept>
 
 namespace pdeface::pdef::detail {
@@ -186,13 +187,26 @@ struct Pairs {
   std::vector<bool> border; // on or next to the grid's border
 };
 
-// The points of `from` on the grid us × vs, with the point and tangents of `to` at the same (u, v),
-// appended to `out`. `border`: whether a point is on or next to the border of the surfaces' domain.
-void evaluate_pairs(const pde::Surface& from, const pde::Surface& to, std::span<const double> us,
-                    std::span<const double> vs, const std::function<bool(std::size_t, std::size_t)>& border,
-                    Pairs& out) {
-  const pde::Grid p = from.evaluate(us, vs), q = to.evaluate(us, vs);
-  const pde::Grid qu = to.evaluate(us, vs, pde::Derivative::U), qv = to.evaluate(us, vs, pde::Derivative::V);
+// A surface on the grid us × vs: its points, and (when asked) its tangents.
+struct Evaluated {
+  pde::Grid x, xu, xv;
+};
+Evaluated evaluated(const pde::Surface& s, std::span<const double> us, std::span<const double> vs,
+                    bool tangents) {
+  Evaluated e{s.evaluate(us, vs), {}, {}};
+  if (tangents) {
+    e.xu = s.evaluate(us, vs, pde::Derivative::U);
+    e.xv = s.evaluate(us, vs, pde::Derivative::V);
+  }
+  return e;
+}
+
+// The points `p` of one surface on the grid us × vs, with the point and tangents `to` of the other at the
+// same (u, v), appended to `out`. `border`: whether a point is on or next to the border of the surfaces'
+// domain.
+void pairs_of(const pde::Grid& p, const Evaluated& to, std::span<const double> us, std::span<const double> vs,
+              const std::function<bool(std::size_t, std::size_t)>& border, Pairs& out) {
+  const pde::Grid &q = to.x, &qu = to.xu, &qv = to.xv;
   if (out.u.empty()) { // the coarse grid: one allocation each
     for (auto* v : {&out.u, &out.v})
       v->reserve(p.points.size());
@@ -211,6 +225,13 @@ void evaluate_pairs(const pde::Surface& from, const pde::Surface& to, std::span<
       out.to_v.push_back(qv.points[at]);
       out.border.push_back(border(i, k));
     }
+}
+
+// The points of `from` on the grid us × vs, with the point and tangents of `to` at the same (u, v).
+void evaluate_pairs(const pde::Surface& from, const pde::Surface& to, std::span<const double> us,
+                    std::span<const double> vs, const std::function<bool(std::size_t, std::size_t)>& border,
+                    Pairs& out) {
+  pairs_of(from.evaluate(us, vs), evaluated(to, us, vs, true), us, vs, border, out);
 }
 
 // Each point's distance to the other surface estimated by its distance to that surface's tangent plane at
@@ -282,11 +303,20 @@ int check_density(std::size_t curves, std::size_t samples, std::size_t columns) 
   return 0;
 }
 
-double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit, int density) {
-  if (density < 1) throw std::invalid_argument("pdef::detail::surface_error: a density of at least 1");
-  // A coarse grid first: `density` points per curve interval across and per sample interval along.
-  const std::vector<double>& knots = reference.knots();
+namespace {
+
+struct CoarseReference {
   std::vector<double> us, vs;
+  Evaluated at; // the reference's points and tangents on us × vs
+};
+
+// The check's coarse grid: `density` points per curve interval across and per sample interval along, and
+// the reference surface on it (the same for every grid `plan_lossy` tries: evaluated once).
+CoarseReference coarse_reference(const pde::Surface& reference, int density) {
+  if (density < 1) throw std::invalid_argument("pdef::detail::surface_error: a density of at least 1");
+  CoarseReference c;
+  const std::vector<double>& knots = reference.knots();
+  std::vector<double>&us = c.us, &vs = c.vs;
   for (std::size_t j = 0; j + 1 < knots.size(); ++j)
     for (int i = 0; i < density; ++i)
       us.push_back(knots[j] + (knots[j + 1] - knots[j]) * i / density);
@@ -297,6 +327,13 @@ double surface_error(const pde::Surface& reference, const pde::Surface& decoded,
       vs.push_back(std::numbers::pi * (static_cast<double>(k) + static_cast<double>(i) / density) /
                    static_cast<double>(intervals));
   vs.push_back(std::numbers::pi);
+  c.at = evaluated(reference, us, vs, true);
+  return c;
+}
+
+double surface_error(const pde::Surface& reference, const CoarseReference& coarse_reference,
+                     const pde::Surface& decoded, double limit) {
+  const std::vector<double>&us = coarse_reference.us, &vs = coarse_reference.vs;
   const auto grid_border = [&](std::size_t i, std::size_t k) {
     return i < 2 || i + 2 >= us.size() || k < 2 || k + 2 >= vs.size();
   };
@@ -305,11 +342,17 @@ double surface_error(const pde::Surface& reference, const pde::Surface& decoded,
   };
 
   double worst = 0;
-  for (const bool back : {false, true}) { // decoded to reference, then reference to decoded
+  Evaluated on_decoded{decoded.evaluate(us, vs), {}, {}}; // its tangents when the second way needs them
+  for (const bool back : {false, true}) {                 // decoded to reference, then reference to decoded
     const pde::Surface& from = back ? reference : decoded;
     const pde::Surface& to = back ? decoded : reference;
+    if (back) {
+      on_decoded.xu = decoded.evaluate(us, vs, pde::Derivative::U);
+      on_decoded.xv = decoded.evaluate(us, vs, pde::Derivative::V);
+    }
     Pairs coarse;
-    evaluate_pairs(from, to, us, vs, grid_border, coarse);
+    pairs_of(back ? coarse_reference.at.x : on_decoded.x, back ? on_decoded : coarse_reference.at, us, vs,
+             grid_border, coarse);
     const double found = largest(coarse, to, limit);
     worst = std::max(worst, found);
     if (found > limit) return found;
@@ -345,6 +388,12 @@ double surface_error(const pde::Surface& reference, const pde::Surface& decoded,
     if (refined > limit) return refined;
   }
   return worst;
+}
+
+} // namespace
+
+double surface_error(const pde::Surface& reference, const pde::Surface& decoded, double limit, int density) {
+  return surface_error(reference, coarse_reference(reference, density), decoded, limit);
 }
 
 Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
@@ -399,6 +448,7 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     return make_error(ErrorCode::InvalidArgument,
                       "pdef: the face's surface cannot be built: " + reference.error().message);
   const double frame_part = plan.frame64 ? 0.0 : frame_error;
+  std::optional<CoarseReference> on_reference; // made at the first check that reaches the surface
   // The first grid that keeps every sample within e is tried first; each that fails is followed by one
   // finer in proportion to how far it failed (the error grows about linearly with the step), at least 2 %
   // finer; once one passes, the step between it and the finest that failed is bisected twice (the error is
@@ -425,7 +475,8 @@ Result<LossyPlan> plan_lossy(const Face& face, const EncodeOptions& options) {
     Result<pde::Surface> surface = pde::Surface::build(decoded.curves, decoded.pde);
     if (!surface) return c;
     spent += 8 * cost;
-    c.surface = surface_error(*reference, *surface, limit, density);
+    if (!on_reference) on_reference = coarse_reference(*reference, density);
+    c.surface = surface_error(*reference, *on_reference, *surface, limit);
     c.passed = c.surface <= limit;
     if (!c.passed) c.ratio = limit / c.surface; // c.surface is where the search stopped: at most the error
     return c;
