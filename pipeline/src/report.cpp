@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <mutex>
 
@@ -424,6 +425,19 @@ void add_rows(ScanReport& report, std::vector<Task>& tasks, std::vector<Task>& d
   for (const Task* t : order)
     if (t->variant.method == Method::Raw && t->variant.extension == ".ply")
       report.ply_bytes = t->variant.bytes;
+  // The heat maps, each a few thousand distances and a picture, made in parallel, kept in the rows' order.
+  std::vector<const Task*> heated;
+  for (const Task* t : order)
+    if (t->keep_mesh && t->decoded && t->variant.fidelity) heated.push_back(t);
+  std::vector<HeatMap> heat_maps(heated.size());
+  detail::parallel_for(heated.size(), options.threads, [&](std::size_t i) {
+    const Task& t = *heated[i];
+    heat_maps[i] = detail::heat_map(measurer.in_canonical(*t.decoded), measurer.yardstick(),
+                                    options.heat_max_mm, t.variant.name,
+                                    detail::slug(report.name) + "_" + detail::slug(t.variant.name) + ".glb");
+  });
+  report.heat_maps.insert(report.heat_maps.end(), std::make_move_iterator(heat_maps.begin()),
+                          std::make_move_iterator(heat_maps.end()));
   for (Task* t : order) {
     if (report.ply_bytes > 0)
       t->variant.ratio_to_ply = static_cast<double>(t->variant.bytes) / static_cast<double>(report.ply_bytes);
@@ -436,10 +450,6 @@ void add_rows(ScanReport& report, std::vector<Task>& tasks, std::vector<Task>& d
             {t->variant.name,
              detail::slug(report.name) + "_" + detail::slug(t->variant.name) + "_textured.glb",
              *std::move(glb)});
-    if (t->keep_mesh && t->decoded && t->variant.fidelity)
-      report.heat_maps.push_back(detail::heat_map(
-          measurer.in_canonical(*t->decoded), measurer.yardstick(), options.heat_max_mm, t->variant.name,
-          detail::slug(report.name) + "_" + detail::slug(t->variant.name) + ".glb"));
     report.variants.push_back(std::move(t->variant));
   }
 }
