@@ -88,5 +88,58 @@ TEST(DepthMap, ABlurWiderThanTheGridIsTheMean) {
   EXPECT_NEAR(*blurred.at(5.0, 0.0), 1.0, 1e-9);
 }
 
+// Dropping the cells seen through holes the plain way: a known cell goes when the front-most known cell
+// within the reach on both sides of it, along its row or along its column, lies more than `depth` in front
+// of it. The map finds those fronts by sliding maxima; it must drop the same cells.
+TEST(DepthMap, DropsTheCellsWithAFrontInReachOnBothSides) {
+  for (const double cell : {1.0, 0.7}) {
+    DepthMap map(-30.0, 32.0, -25.0, 21.0, cell);
+    // One point per cell centre (a splat smaller than a cell: each cell its own point's depth): a wavy
+    // surface, deep pits in a pattern no line of cells repeats, a few unknown cells.
+    std::vector<Vec3> points;
+    for (int r = 0; r < map.rows(); ++r)
+      for (int c = 0; c < map.cols(); ++c) {
+        if ((r * 7 + c * 3) % 17 == 0) continue;
+        const bool pit = (r * 13 + c * 5) % 11 < 3 || (r / 9 + c / 7) % 5 == 0;
+        const double z = 4.0 * std::sin(0.3 * r) + 3.0 * std::cos(0.2 * c) - (pit ? 6.0 + (r + c) % 4 : 0.0);
+        points.emplace_back(map.x_of(c), map.y_of(r), z);
+      }
+    map.rasterise(points, {}, 0.4 * cell);
+    const DepthMap before = map;
+    constexpr double kDepth = 5.0, kReach = 6.0;
+    map.drop_pits(kDepth, kReach);
+    const int n = static_cast<int>(std::ceil(kReach / cell));
+    const auto front = [&](int r, int c, int dr, int dc) {
+      double best = -std::numeric_limits<double>::infinity();
+      for (int k = 1; k <= n; ++k) {
+        const int rr = r + k * dr, cc = c + k * dc;
+        if (rr >= 0 && cc >= 0 && rr < before.rows() && cc < before.cols() && before.known(rr, cc))
+          best = std::max(best, before.z(rr, cc));
+      }
+      return best;
+    };
+    int dropped = 0, kept = 0;
+    for (int r = 0; r < map.rows(); ++r)
+      for (int c = 0; c < map.cols(); ++c) {
+        if (!before.known(r, c)) {
+          ASSERT_FALSE(map.known(r, c));
+          continue;
+        }
+        const double floor = before.z(r, c) + kDepth;
+        const bool drop = (front(r, c, 0, -1) > floor && front(r, c, 0, 1) > floor) ||
+                          (front(r, c, -1, 0) > floor && front(r, c, 1, 0) > floor);
+        ASSERT_EQ(map.known(r, c), !drop) << "cell " << r << ", " << c;
+        if (drop) {
+          ++dropped;
+        } else {
+          ++kept;
+          ASSERT_EQ(map.z(r, c), before.z(r, c));
+        }
+      }
+    EXPECT_GT(dropped, 100) << "cell " << cell;
+    EXPECT_GT(kept, 1000) << "cell " << cell;
+  }
+}
+
 } // namespace
 } // namespace pdeface

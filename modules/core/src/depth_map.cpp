@@ -108,41 +108,52 @@ void DepthMap::rasterise(std::span<const Vec3> p, std::span<const Triangle> tria
 }
 
 void DepthMap::drop_pits(double depth, double reach) {
-  const int n = std::max(1, static_cast<int>(std::ceil(reach / cell_)));
-  // The front-most known depth among the n cells before each cell of a line (-inf when none), for every
-  // cell at once: a sliding-window maximum (the window's candidates in a ring, decreasing), so that the
-  // cost does not grow with the reach.
+  // A window longer than a line holds the whole line: reaching further changes nothing.
+  const int n = std::max(1, clamped(std::ceil(reach / cell_), std::max(rows(), cols())));
+  const auto width = static_cast<std::size_t>(n);
+  // The front-most known depth among the n cells before and among the n cells after each cell of a line
+  // (-inf when none), for every cell at once: the line padded with n unknown cells at both ends, and the
+  // maximum of every n cells of it from the maxima of blocks of n cells (van Herk / Gil-Werman: a window
+  // is the end of one block and the start of the next), without branches, so that the cost does not grow
+  // with the reach. Maxima are exact: the same depths as any other way of finding them.
   const double none = -std::numeric_limits<double>::infinity();
-  std::vector<int> ring;
-  const auto front_before = [&](const auto& z_at, int length, const auto& store) {
-    ring.resize(static_cast<std::size_t>(length) + 1);
-    std::size_t head = 0, tail = 0; // the window's candidates: ring[head, tail), their depths decreasing
-    const auto depth_at = [&](int i) { return std::isnan(z_at(i)) ? none : z_at(i); };
+  std::vector<double> padded, prefix, suffix;
+  const auto fronts = [&](const double* line, int length, double* before, double* after) {
+    const std::size_t total = static_cast<std::size_t>(length) + 2 * width;
+    padded.assign(total, none);
+    for (int i = 0; i < length; ++i)
+      padded[width + static_cast<std::size_t>(i)] = std::isnan(line[i]) ? none : line[i];
+    prefix.resize(total);
+    suffix.resize(total);
+    for (std::size_t b = 0; b < total; b += width) {
+      const std::size_t e = std::min(total, b + width);
+      prefix[b] = padded[b];
+      for (std::size_t j = b + 1; j < e; ++j)
+        prefix[j] = std::max(prefix[j - 1], padded[j]);
+      suffix[e - 1] = padded[e - 1];
+      for (std::size_t j = e - 1; j > b; --j)
+        suffix[j - 1] = std::max(suffix[j], padded[j - 1]);
+    }
+    // The maximum of padded[j, j + n).
+    const auto window = [&](std::size_t j) { return std::max(suffix[j], prefix[j + width - 1]); };
     for (int i = 0; i < length; ++i) {
-      while (head < tail && ring[head] < i - n)
-        ++head;
-      store(i, head < tail ? depth_at(ring[head]) : none);
-      const double zi = depth_at(i);
-      while (tail > head && depth_at(ring[tail - 1]) <= zi)
-        --tail;
-      ring[tail++] = i;
+      const auto at = static_cast<std::size_t>(i);
+      before[i] = window(at);
+      after[i] = window(at + width + 1);
     }
   };
-  // Along each row and column, both ways: the front within reach before and after every cell.
-  Eigen::MatrixXd left(z_.rows(), z_.cols()), right(z_.rows(), z_.cols());
+  // Along each column (contiguous in z_) and each row (of a row-major copy), both ways: the front within
+  // reach before and after every cell.
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
   Eigen::MatrixXd below(z_.rows(), z_.cols()), above(z_.rows(), z_.cols());
-  for (int r = 0; r < rows(); ++r) {
-    front_before([&](int c) { return z_(r, c); }, cols(), [&](int c, double v) { left(r, c) = v; });
-    front_before([&](int c) { return z_(r, cols() - 1 - c); }, cols(),
-                 [&](int c, double v) { right(r, cols() - 1 - c) = v; });
-  }
-  for (int c = 0; c < cols(); ++c) {
-    front_before([&](int r) { return z_(r, c); }, rows(), [&](int r, double v) { below(r, c) = v; });
-    front_before([&](int r) { return z_(rows() - 1 - r, c); }, rows(),
-                 [&](int r, double v) { above(rows() - 1 - r, c) = v; });
-  }
+  for (int c = 0; c < cols(); ++c)
+    fronts(z_.col(c).data(), rows(), below.col(c).data(), above.col(c).data());
+  const RowMajor by_row = z_;
+  RowMajor left(z_.rows(), z_.cols()), right(z_.rows(), z_.cols());
   for (int r = 0; r < rows(); ++r)
-    for (int c = 0; c < cols(); ++c) {
+    fronts(by_row.row(r).data(), cols(), left.row(r).data(), right.row(r).data());
+  for (int c = 0; c < cols(); ++c)
+    for (int r = 0; r < rows(); ++r) {
       if (!known(r, c)) continue;
       const double floor = z_(r, c) + depth;
       const bool across = left(r, c) > floor && right(r, c) > floor;
