@@ -59,7 +59,8 @@ int main(int argc, char** argv) {
     const pipeline::CanonicalScan canonical = pipeline::canonical_scan(scan, *alignment);
     Result<slice::ProfileSet> profiles = pipeline::extract_profiles(canonical);
     Result<metrics::FaceYardstick> yardstick = metrics::FaceYardstick::make(canonical.mesh, *profiles);
-    pipeline::EncodeRequest request;
+    pipeline::EncodeRequest request; // the curves `pdeface encode --size` puts under a layer
+    request.profiles.ratio = pipeline::kResidualRatio;
     request.check.reset();
     Result<pipeline::EncodeOutcome> made = pipeline::encode_aligned(scan, *alignment, request);
     if (!made || !yardstick) {
@@ -68,13 +69,21 @@ int main(int argc, char** argv) {
     }
     const std::string curves = made->encoded.bytes;
     Result<pdef::Face> face = pdef::decode(curves);
-    Result<pde::Surface> surface = pdef::surface_of(*face);
+    Result<pde::Surface> surface = face ? pdef::surface_of(*face) : Result<pde::Surface>(face.error());
+    if (!surface) {
+      fmt::print("{}: {}\n", path, surface.error().to_string());
+      continue;
+    }
     const residual::GridSize size = residual::grid_for(*surface, spacing);
     auto t0 = std::chrono::steady_clock::now();
     const residual::Measured measured = residual::measure(*surface, canonical.mesh, size.width, size.height);
     auto t1 = std::chrono::steady_clock::now();
     Result<pdef::CodedResidual> coded = pdef::code_residual(measured.field, {.step_mm = step});
     auto t2 = std::chrono::steady_clock::now();
+    if (!coded) { // a grid too fine for the curves' file (pdef::max_residual_nodes)
+      fmt::print("{}: grid {} x {}: {}\n", path, size.width, size.height, coded.error().to_string());
+      continue;
+    }
     fmt::print("{}: curves {} B, grid {} x {}, found {:.1f} %, stream {} B at {} mm ({} planes, {} levels); "
                "measure {:.0f} ms, code {:.0f} ms\n",
                path, curves.size(), size.width, size.height, 100 * measured.found_share(),

@@ -116,6 +116,7 @@ int main(int argc, char** argv) {
     pipeline::EncodeRequest request;
     request.check.reset();
     request.residual.size_bytes = budget;
+    request.profiles.ratio = pipeline::default_ratio(request.residual);
     if (spacing > 0) request.residual.spacing_mm = spacing;
     Result<pipeline::EncodeOutcome> made = pipeline::encode_aligned(raw, *alignment, request);
     if (!made) {

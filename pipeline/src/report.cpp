@@ -392,13 +392,13 @@ std::vector<Task> colour_tasks(const Mesh& coloured, const Mesh& scan, detail::P
   for (const CompareOptions::Texture& t : options.textures)
     tasks.push_back({.variant = {.method = Method::PdeTexture,
                                  .name = fmt::format("pde {:g} % + texture {:g} mm q{}",
-                                                     100.0 * options.pde_budget_ratio, t.texel_mm, t.quality),
+                                                     100.0 * options.texture_ratio, t.texel_mm, t.quality),
                                  .extension = ".pdef",
-                                 .ratio = options.pde_budget_ratio,
+                                 .ratio = options.texture_ratio,
                                  .lossless = false},
                      .make = [&, t]() -> Result<Encoded> {
                        Result<Encoded> e =
-                           pde.make(options.pde_budget_ratio, false, std::nullopt,
+                           pde.make(options.texture_ratio, false, std::nullopt,
                                     {.wanted = true, .texel_mm = t.texel_mm, .quality = t.quality});
                        if (!e) return e;
                        if (e->decoded.material && e->decoded.material->base_color_image)

@@ -79,7 +79,7 @@ def reconstruct(mesh: Mesh, *, ratio: float = 0.1, points: Optional[int] = None,
                 scheme: str = "spline", modes: Optional[int] = None, smoothing: Optional[float] = None,
                 resolution: _Resolution = None, landmarks: _Landmarks = None, force: bool = False,
                 source: str = "mesh") -> Mesh: ...
-def encode(mesh: Mesh, *, ratio: float = 0.1, points: Optional[int] = None, curves: int = 28,
+def encode(mesh: Mesh, *, ratio: Optional[float] = None, points: Optional[int] = None, curves: int = 28,
            scheme: str = "spline", modes: Optional[int] = None, smoothing: Optional[float] = None,
            size: Optional[int] = None, target_error: Optional[float] = None, target_measure: str = "p95",
            texture: bool = False, texel: float = 0.5, texture_quality: int = 80, max_error: float = 0.05, lossless: bool = False, landmarks: _Landmarks = None,

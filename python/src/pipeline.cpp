@@ -274,18 +274,21 @@ at the origin): ``canonical = scale * rotation @ p + translation``.)doc")
 (what `pdeface reconstruct` writes). Raises pdeface.SelfCheckError when it is off the scan, unless ``force``.)doc");
   m.def(
       "encode",
-      [curve_args](const Mesh& mesh, double ratio, std::optional<std::size_t> points, std::size_t curves,
-                   const std::string& scheme, std::optional<std::size_t> modes,
+      [curve_args](const Mesh& mesh, std::optional<double> ratio, std::optional<std::size_t> points,
+                   std::size_t curves, const std::string& scheme, std::optional<std::size_t> modes,
                    std::optional<double> smoothing, std::optional<std::size_t> size,
                    std::optional<double> target_error, const std::string& target_measure, bool texture,
                    double texel, int texture_quality, double max_error, bool lossless,
                    const py::object& landmarks, bool store_landmarks, const std::string& name, bool force,
                    const std::string& source) {
-        return encode(mesh, curve_args(ratio, points, curves, scheme, modes, smoothing),
+        // As `pdeface encode`: without a ratio, 5 % curves under a residual layer, else 10 %.
+        const double r =
+            ratio.value_or(pipeline::default_ratio({.size_bytes = size, .target_error_mm = target_error}));
+        return encode(mesh, curve_args(r, points, curves, scheme, modes, smoothing),
                       LayerArgs{size, target_error, target_measure, texture, texel, texture_quality},
                       max_error, lossless, landmarks, store_landmarks, name, force, source);
       },
-      py::arg("mesh"), py::kw_only(), py::arg("ratio") = 0.10, py::arg("points") = py::none(),
+      py::arg("mesh"), py::kw_only(), py::arg("ratio") = py::none(), py::arg("points") = py::none(),
       py::arg("curves") = 28, py::arg("scheme") = "spline", py::arg("modes") = py::none(),
       py::arg("smoothing") = py::none(), py::arg("size") = py::none(), py::arg("target_error") = py::none(),
       py::arg("target_measure") = "p95", py::arg("texture") = false, py::arg("texel") = 0.5,
@@ -294,7 +297,8 @@ at the origin): ``canonical = scale * rotation @ p + translation``.)doc")
       py::arg("force") = false, py::arg("source") = "mesh",
       R"doc(The scan as a .pdef file's bytes, those `pdeface encode` writes with the same options. With ``size``
 (bytes) or ``target_error`` (mm, of ``target_measure``: "mean", "p95" or "max") a residual layer follows
-the curves (version 3): the best error within the size, or the fewest bytes meeting the error; any prefix
+the curves (version 3; ``ratio`` 0.05 unless given, else 0.10): the best error within the size, or the
+fewest bytes meeting the error; any prefix
 of the file decodes (``decode(data[:n])``). With ``texture`` a texture layer holds the scan's photograph (or
 vertex colours) over the face as one JPEG (``texel`` mm apart, ``texture_quality`` 1-100), and ``decode``
 gives a textured mesh. Raises pdeface.SelfCheckError when the decoded file is off the scan, unless

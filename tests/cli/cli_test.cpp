@@ -435,7 +435,7 @@ TEST_F(Cli, CompareBatchReportsABadScanAndCompletesTheOthers) {
   // with a residual layer, and colour: Draco with the vertex colours and 4 texture layers), the failed
   // scans'.
   EXPECT_EQ(lines(csv), 1U + 2U * (8 + 1 + 2 + 1 + 1 + 5) + 2U) << csv;
-  EXPECT_NE(md.find("pde 10 % + residual 2048 B"), std::string::npos) << md;
+  EXPECT_NE(md.find("pde 5 % + residual 2048 B"), std::string::npos) << md;
   EXPECT_NE(md.find("Rate and distortion"), std::string::npos) << md;
 
   EXPECT_EQ(run({"compare", "--ratios", "0.8"}).exit_code, 2);

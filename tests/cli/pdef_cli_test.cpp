@@ -18,6 +18,29 @@ protected:
   void SetUp() override { ASSERT_EQ(run({"sample", path("face.ply")}).exit_code, 0); }
 };
 
+// A residual layer goes on 5 % curves unless the command names the curves' points: the layer gets the bytes
+// the curves do not take (pipeline::kResidualRatio).
+TEST_F(PdefCli, EncodeWithALayerTakesTheFewestCurvePointsUnlessTold) {
+  const auto encode = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{"encode", path("face.ply"), "-o", path("sized.pdef")};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run(args);
+  };
+  for (const auto& [extra, points] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--size", "2048"}, "28 curves x 15 points (5.0 % of 300)"},
+           {{"--target-error", "0.2"}, "28 curves x 15 points (5.0 % of 300)"},
+           {{"--size", "2048", "--ratio", "0.1"}, "28 curves x 30 points (10.0 % of 300)"},
+           {{"--size", "2048", "--points", "20"}, "28 curves x 20 points"},
+           {{}, "28 curves x 30 points (10.0 % of 300)"}}) {
+    const Outcome e = encode(extra);
+    ASSERT_EQ(e.exit_code, 0) << e.err;
+    EXPECT_NE(e.out.find(points), std::string::npos) << e.out;
+    if (!extra.empty() && extra[0] == "--size") {
+      EXPECT_LE(slurp(work_ / "sized.pdef").size(), 2048U);
+    }
+  }
+}
+
 TEST_F(PdefCli, EncodeInfoDecode) {
   const Outcome e = run({"encode", path("face.ply"), "-o", path("face.pdef")});
   ASSERT_EQ(e.exit_code, 0) << e.err;

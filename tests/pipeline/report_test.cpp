@@ -169,7 +169,7 @@ TEST(CompareSample, BytesInTheReportAreTheSizesOfTheFilesWritten) {
 // closer to the scan than the curves alone (issue 19).
 TEST(CompareSample, ResidualRowIsTheSizedFileAndBeatsTheCurves) {
   const ScanReport& s = sample_report().scans[0];
-  const Variant* v = find(s, "pde 10 % + residual 2048 B");
+  const Variant* v = find(s, "pde 5 % + residual 2048 B"); // pipeline::kResidualRatio
   const Variant* curves = find(s, "pde 10 % lossy");
   ASSERT_TRUE(v && v->fidelity && curves && curves->fidelity) << (v ? v->failure : "missing");
   EXPECT_LE(v->bytes, 2048U);
@@ -177,7 +177,7 @@ TEST(CompareSample, ResidualRowIsTheSizedFileAndBeatsTheCurves) {
   EXPECT_EQ(v->encoded[4], 3); // version 3
   const Mesh scan = sample_face();
   const EncodeOutcome file =
-      encode_request(scan, {.profiles = {.ratio = 0.1}, .residual = {.size_bytes = 2048}}).value();
+      encode_request(scan, {.profiles = {.ratio = kResidualRatio}, .residual = {.size_bytes = 2048}}).value();
   EXPECT_TRUE(v->encoded == file.encoded.bytes);
   EXPECT_LT(v->fidelity->to_scan.mean, 0.5 * curves->fidelity->to_scan.mean);
   EXPECT_LT(v->fidelity->to_scan.p95, 0.5 * curves->fidelity->to_scan.p95);

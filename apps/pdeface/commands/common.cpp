@@ -92,10 +92,11 @@ void add_write_options(CLI::App* cmd, formats::WriteOptions& write) {
 
 void CurveArgs::add_to(CLI::App* cmd, bool with_landmarks) {
   if (with_landmarks) add_landmarks(cmd, landmarks);
-  CLI::Option* ratio = cmd->add_option("--ratio", options.ratio,
-                                       "Sampling ratio: K = ratio x 300 reference points (0.05..0.6)")
-                           ->check(CLI::Range(slice::kMinRatio, slice::kMaxRatio))
-                           ->capture_default_str();
+  CLI::Option* ratio = ratio_option =
+      cmd->add_option("--ratio", options.ratio,
+                      "Sampling ratio: K = ratio x 300 reference points (0.05..0.6)")
+          ->check(CLI::Range(slice::kMinRatio, slice::kMaxRatio))
+          ->capture_default_str();
   cmd->add_option("--points", points, "Points per curve K, instead of the ratio (>= 4)")
       ->check(CLI::Range(std::size_t{4}, pde::max_samples))
       ->excludes(ratio);

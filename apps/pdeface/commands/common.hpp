@@ -95,9 +95,12 @@ struct CurveArgs {
   std::string fit = "cosine";
   std::optional<std::size_t> points;
   slice::ProfileOptions options;
+  CLI::Option* ratio_option = nullptr; // set by add_to
 
   void add_to(CLI::App* cmd, bool with_landmarks = true);
   [[nodiscard]] slice::ProfileOptions profile_options() const;
+  //! The command line named the curves' points (`--ratio` or `--points`).
+  [[nodiscard]] bool ratio_given() const { return points || (ratio_option && ratio_option->count() > 0); }
 };
 
 //! How curves become a surface.

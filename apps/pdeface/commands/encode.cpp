@@ -3,6 +3,8 @@
 
 #include "common.hpp"
 
+#include <fmt/format.h>
+
 namespace pdeface::cli {
 namespace {
 
@@ -43,6 +45,7 @@ int run_encode(const EncodeArgs& args) {
       .name = args.name,
       .source = args.in.string(),
       .force = args.force};
+  if (!args.curves.ratio_given()) request.profiles.ratio = pipeline::default_ratio(request.residual);
   return encode_scan(args.in, args.out, request);
 }
 
@@ -79,7 +82,8 @@ void encode_command(CLI::App& app, int& status) {
       ->check(CLI::IsMember(all_names<pipeline::TargetMeasure>(pipeline::kTargetMeasureNames)))
       ->capture_default_str();
   cmd->add_option("--residual-spacing", args->residual_spacing,
-                  "The residual grid's spacing (mm; default by size: 1, 0.7 or 0.5)")
+                  "The residual grid's spacing (mm; default by the layer's size: 1, 0.7 or 0.35, a point "
+                  "cloud's 0.5 at most)")
       ->check(CLI::Range(0.2, 5.0));
   CLI::Option* texture = cmd->add_flag(
       "--texture", args->texture,
@@ -93,6 +97,9 @@ void encode_command(CLI::App& app, int& status) {
       ->capture_default_str()
       ->needs(texture);
   args->curves.add_to(cmd);
+  args->curves.ratio_option->description(fmt::format(
+      "Sampling ratio: K = ratio x 300 reference points (0.05..0.6; {:g} with --size or --target-error)",
+      pipeline::kResidualRatio));
   args->surface.add_to(cmd);
   add_force(cmd, args->force);
   cmd->callback([args, &status] { status = run_encode(*args); });

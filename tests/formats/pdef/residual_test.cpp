@@ -126,11 +126,11 @@ TEST(PdefResidual, EveryPrefixOfTheLayerDecodesAndImproves) {
   EXPECT_GT(improved, 100u);
 }
 
-// tests/data/pdef/sample_residual.pdef: the built-in sample face, `pdeface encode --size 1600` (777 bytes
-// of curves, 823 of layer: 24 of header, 73 of trim, 726 of stream). Cut at every byte of its layer, it
-// decodes to a surface that comes closer to the whole file's as bytes are added, and trims more of it,
-// never a cell the whole file keeps. sample_residual_offsets.pdef, made the same way by the first version 3
-// writer (no trim), too.
+// tests/data/pdef/sample_residual.pdef: the built-in sample face, `pdeface encode --size 1600 --ratio 0.1`
+// (777 bytes of curves, 823 of layer: 24 of header, 73 of trim, 726 of stream). Cut at every byte of its
+// layer, it decodes to a surface that comes closer to the whole file's as bytes are added, and trims more of
+// it, never a cell the whole file keeps. sample_residual_offsets.pdef, made the same way by the first version
+// 3 writer (no trim), too.
 TEST(PdefResidual, EveryPrefixOfAFileDecodesToASurfaceThatImproves) {
   for (const char* name : {"sample_residual.pdef", "sample_residual_offsets.pdef"}) {
     const std::string file = test::slurp(test::fixtures() / "pdef" / name);

@@ -10,6 +10,7 @@
 #include "pdeface/metrics/colour.hpp"
 #include "pdeface/metrics/fidelity.hpp"
 #include "pdeface/pde/surface.hpp"
+#include "pdeface/pipeline/encode.hpp"
 
 #include <cstddef>
 #include <filesystem>
@@ -45,9 +46,10 @@ struct CompareOptions {
   bool pde_lossy = true;
   bool pde_lossless = true;
   //! PDE with a residual layer (`.pdef` version 3, `pdeface encode --size`): the curves at
-  //! `pde_budget_ratio`, the file at each of these sizes (the decimate + Draco budgets by default).
+  //! `pde_budget_ratio` (as `pdeface encode --size` puts them), the file at each of these sizes (the
+  //! decimate + Draco budgets by default).
   std::vector<std::size_t> pde_budgets{1024, 2048, 4096, 8192, 16384, 32768};
-  double pde_budget_ratio = 0.10;
+  double pde_budget_ratio = kResidualRatio;
   pde::Scheme scheme = pde::Scheme::Spline;
   int gzip_level = 6; //!< zlib level of the gzipped raw files (gzip's default)
   //! Compress only the face (`align::crop_face`: the face's height, the cheeks, no ears, neck, shoulders or
@@ -67,13 +69,14 @@ struct CompareOptions {
   //! Colour, where the scan has it (a photograph with texture coordinates, or vertex colours): Draco at
   //! `colour_draco_bits` with the texture coordinates at `draco_uv_bits` (or the colours at
   //! `draco_color_bits`) beside the photograph at each of `photo_scales` (1: the scan's own image file;
-  //! smaller: resized and encoded as JPEG at `photo_quality`), and the `.pdef` at `pde_budget_ratio` with a
+  //! smaller: resized and encoded as JPEG at `photo_quality`), and the `.pdef` at `texture_ratio` with a
   //! texture layer at each of `textures`; each measured on the colours of the face mask (PSNR, ΔE₀₀), and
   //! written as a textured GLB beside the heat maps.
   bool colour = true;
   int colour_draco_bits = 11;
   int draco_uv_bits = 12;
   int draco_color_bits = 8;
+  double texture_ratio = default_ratio({}); //!< as `pdeface encode --texture` puts the curves
   std::vector<double> photo_scales{1.0, 0.5, 0.25};
   int photo_quality = 80;
   struct Texture {
