@@ -41,7 +41,7 @@ struct Corpus {
   std::string origin;
   std::string lossy, lossless;                 // .pdef at 10 %
   std::string draco;                           // the scan at 11 bits
-  std::map<std::size_t, std::string> residual; // .pdef at 10 % with a residual layer, by file size
+  std::map<std::size_t, std::string> residual; // `pdeface encode --size`'s files (5 % curves), by size
   std::size_t scan_vertices = 0;
 };
 
@@ -63,9 +63,11 @@ const Corpus& corpus() {
     out.lossy = pipeline::encode_request(scan, request).value().encoded.bytes;
     for (const std::size_t size : kResidualSizes) {
       request.residual.size_bytes = size;
+      request.profiles.ratio = pipeline::default_ratio(request.residual);
       out.residual[size] = pipeline::encode_request(scan, request).value().encoded.bytes;
     }
     request.residual = {};
+    request.profiles.ratio = pipeline::default_ratio(request.residual);
     request.encoding.lossless = true;
     out.lossless = pipeline::encode_request(scan, request).value().encoded.bytes;
     out.draco = pdeface::drc::write(scan, {.position_bits = 11, .level = 7}).value();
@@ -198,6 +200,7 @@ const std::map<std::size_t, pdef::Face>& trimmed_faces() {
     request.check.reset();
     for (const std::size_t size : {std::size_t{2048}, std::size_t{16384}}) {
       request.residual.size_bytes = size;
+      request.profiles.ratio = pipeline::default_ratio(request.residual);
       out[size] = pdef::decode(pipeline::encode_request(scan->mesh, request).value().encoded.bytes).value();
     }
     return out;

@@ -82,8 +82,8 @@ void encode_command(CLI::App& app, int& status) {
       ->check(CLI::IsMember(all_names<pipeline::TargetMeasure>(pipeline::kTargetMeasureNames)))
       ->capture_default_str();
   cmd->add_option("--residual-spacing", args->residual_spacing,
-                  "The residual grid's spacing (mm; default by the layer's size: 1, 0.7 or 0.35, a point "
-                  "cloud's 0.5 at most)")
+                  "The residual grid's spacing (mm; default by the layer's size: 1, 0.5 or 0.35, a point "
+                  "cloud's 0.5 at most; 0.7 for --target-error)")
       ->check(CLI::Range(0.2, 5.0));
   CLI::Option* texture = cmd->add_flag(
       "--texture", args->texture,

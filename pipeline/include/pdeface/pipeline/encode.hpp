@@ -37,7 +37,7 @@ struct ResidualRequest {
   std::optional<std::size_t> size_bytes; //!< the whole file at most this many bytes, the best error
   std::optional<double> target_error_mm; //!< or the fewest bytes whose decoded surface meets this
   TargetMeasure target_measure = TargetMeasure::P95;
-  //! The grid's spacing (mm); default by the layer's bytes: 1 mm below 6 KB, 0.7 mm below 12 KB, 0.35 mm
+  //! The grid's spacing (mm); default by the layer's bytes: 1 mm below 6 KB, 0.5 mm below 12 KB, 0.35 mm
   //! above (0.5 mm for a point cloud; docs/compare.md, "The residual layer"); 0.7 mm for a target error.
   std::optional<double> spacing_mm;
   [[nodiscard]] bool wanted() const { return size_bytes || target_error_mm; }
