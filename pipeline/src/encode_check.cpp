@@ -49,7 +49,7 @@ Result<metrics::SelfCheck> encode_check(const Mesh& scan, const slice::ProfileSe
     const metrics::SurfaceDistance to_scan(scan);
     double sum = 0.0;
     std::size_t count = 0;
-    for (const Vec3& p : metrics::sample_surface(result, step))
+    for (const Vec3& p : metrics::sample_surface(result, step, mask.box()))
       if (mask.contains(p) && view.sees_surface(p.x(), p.y())) {
         sum += to_scan.distance(p);
         ++count;

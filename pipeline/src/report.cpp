@@ -139,7 +139,8 @@ struct ColourYardstick {
     Result<metrics::SurfaceColour> colour = metrics::SurfaceColour::of(scan, name);
     if (!colour || colour->source() == metrics::ColourSource::None) return std::nullopt;
     std::vector<Vec3> points;
-    for (const Vec3& p : metrics::sample_surface(scan, options.colour_spacing_mm))
+    for (const Vec3& p :
+         metrics::sample_surface(scan, options.colour_spacing_mm, prepared.yardstick.mask().box()))
       if (prepared.yardstick.mask().contains(p)) points.push_back(p);
     if (points.empty()) return std::nullopt;
     return ColourYardstick{*std::move(colour), metrics::SurfaceDistance(scan), std::move(points)};

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <iterator>
+#include <limits>
 #include <random>
 
 namespace pdeface::metrics {
@@ -144,6 +147,26 @@ TEST(Statistics, KnownValues) {
   EXPECT_DOUBLE_EQ(s.p95, 95.0);
   EXPECT_DOUBLE_EQ(s.max, 100.0);
   EXPECT_EQ(s.samples, 100U);
+}
+
+// Sampling within a box gives the whole sampling's points inside it, in order, whatever the box cuts:
+// triangles across its sides, a side through vertices and samples, a box that holds nothing.
+TEST(Sampling, WithinABoxIsTheWholeSamplingFiltered) {
+  Mesh a = grid(12, 1.0, 0.0);
+  for (Vec3& p : a.positions)
+    p.z() = 0.3 * std::sin(p.x()) * std::cos(0.7 * p.y()); // no two samples share a depth by accident
+  const std::vector<Vec3> all = sample_surface(a, 0.15);
+  for (const Box& box :
+       {Box{{2.5, 3.25, -1.0}, {7.3, 9.0, 1.0}}, Box{{3.0, 0.0, -0.1}, {6.0, 12.0, 0.1}},
+        Box{{-5.0, -5.0, -5.0}, {20.0, 20.0, 5.0}}, Box{{20.0, 20.0, 0.0}, {30.0, 30.0, 1.0}},
+        Box{{4.0, 4.0, -std::numeric_limits<double>::infinity()},
+            {8.0, 5.0, std::numeric_limits<double>::infinity()}}}) {
+    std::vector<Vec3> inside;
+    std::ranges::copy_if(all, std::back_inserter(inside), [&](const Vec3& p) {
+      return (p.array() >= box.min.array()).all() && (p.array() <= box.max.array()).all();
+    });
+    EXPECT_EQ(sample_surface(a, 0.15, box), inside) << box.min.transpose() << " .. " << box.max.transpose();
+  }
 }
 
 TEST(Sampling, DenseEvenAndDeterministic) {

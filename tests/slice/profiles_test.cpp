@@ -2,6 +2,7 @@
 // scans that cannot supply a plane.
 
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/slice/face_mask.hpp"
 #include "pdeface/slice/output.hpp"
 #include "pdeface/slice/profiles.hpp"
 
@@ -11,6 +12,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 
 namespace pdeface::slice {
 namespace {
@@ -421,6 +423,44 @@ TEST(Profiles, SvgCaptionsFitThePicture) {
     ++texts;
   }
   EXPECT_EQ(texts, 4U); // front, side (two lines), title
+}
+
+} // namespace
+} // namespace pdeface::slice
+
+namespace pdeface::slice {
+namespace {
+
+// Every point a mask takes lies in its box, also where rounding puts a point on the ellipse a hair past the
+// half-axes (points on and just around its boundary): with the centre far below the top, y − centre_y
+// rounds a point an ulp above centre_y + half_height back onto the ellipse (the box without its hair
+// fails here).
+TEST(FaceMaskBox, HoldsEveryPointTheMaskTakes) {
+  const FaceMask mask{.centre_y = -60.0, .half_width = 71.1, .half_height = 70.0, .min_z = -40.0};
+  const Box box = mask.box();
+  std::size_t taken = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double t = 2.0 * std::numbers::pi * i / 20000.0;
+    for (const double s : {0.999999, 1.0, 1.000000001}) {
+      for (const double z : {-40.0, 0.0}) {
+        const Vec3 p(s * mask.half_width * std::cos(t), mask.centre_y + s * mask.half_height * std::sin(t),
+                     z);
+        // Steps outwards, in x and in y (where y − centre_y can round back onto the ellipse).
+        const double out_y = p.y() > mask.centre_y ? 1e9 : -1e9;
+        const Vec3 q(std::nextafter(p.x(), 2.0 * p.x()), p.y(), z);
+        const Vec3 r1(p.x(), std::nextafter(p.y(), out_y), z);
+        const Vec3 r2(p.x(), std::nextafter(r1.y(), out_y), z);
+        for (const Vec3& r : {p, q, r1, r2}) {
+          if (!mask.contains(r)) continue;
+          ++taken;
+          EXPECT_TRUE((r.array() >= box.min.array()).all() && (r.array() <= box.max.array()).all()) << r;
+        }
+      }
+    }
+  }
+  EXPECT_GT(taken, 100000U);
+  EXPECT_FALSE(mask.contains(Vec3(0.0, mask.centre_y, -40.5)));
+  EXPECT_LE(box.max.x(), mask.half_width * 1.00001); // a hair, not a margin
 }
 
 } // namespace

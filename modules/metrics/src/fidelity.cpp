@@ -229,7 +229,7 @@ Result<MeshFidelity> FaceYardstick::measure(const Mesh& mesh) const {
   if (!coverage) return std::move(coverage).error();
   MeshFidelity f{.coverage = *coverage};
   std::vector<double> distances;
-  for (const Vec3& p : metrics::sample_surface(mesh, s.options.sample_spacing_mm))
+  for (const Vec3& p : metrics::sample_surface(mesh, s.options.sample_spacing_mm, s.mask.box()))
     if (s.mask.contains(p) && s.view.sees_surface(p.x(), p.y())) distances.push_back(s.to_scan.distance(p));
   f.to_scan = metrics::statistics(std::move(distances));
   if (f.to_scan.samples == 0) {

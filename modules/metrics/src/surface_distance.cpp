@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <stdexcept>
 
@@ -156,14 +157,30 @@ SurfaceDistance::Nearest SurfaceDistance::nearest(const Vec3& query) const {
   return best;
 }
 
-std::vector<Vec3> sample_surface(const Mesh& mesh, double spacing) {
+std::vector<Vec3> sample_surface(const Mesh& mesh, double spacing, const std::optional<Box>& within) {
   if (!(spacing > 0.0)) throw std::invalid_argument("sample_surface: spacing must be positive");
-  std::vector<Vec3> out = mesh.positions;
+  const auto inside = [&](const Vec3& p) {
+    return !within || !((p.array() < within->min.array()).any() || (p.array() > within->max.array()).any());
+  };
+  std::vector<Vec3> out;
+  if (!within)
+    out = mesh.positions;
+  else
+    std::ranges::copy_if(mesh.positions, std::back_inserter(out), inside);
   // The R2 sequence (Roberts 2018): the plane's best-spread additive recurrence, folded into triangles.
   constexpr double g = 1.32471795724474602596; // the plastic number
   constexpr double a1 = 1.0 / g, a2 = 1.0 / (g * g);
   for (const Triangle& t : mesh.triangles) {
     const Vec3& a = mesh.positions[t[0]];
+    if (within) { // a point of the triangle, rounded, lies within far less than a millionth of its box
+      Box box;
+      for (const std::uint32_t v : t)
+        box.extend(mesh.positions[v]);
+      const double margin = 1e-6 * (1.0 + box.min.cwiseAbs().cwiseMax(box.max.cwiseAbs()).maxCoeff());
+      if ((box.max.array() + margin < within->min.array()).any() ||
+          (box.min.array() - margin > within->max.array()).any())
+        continue;
+    }
     const Vec3 ab = mesh.positions[t[1]] - a, ac = mesh.positions[t[2]] - a;
     const double area = 0.5 * ab.cross(ac).norm();
     const auto n = static_cast<std::size_t>(std::floor(area / (spacing * spacing)));
@@ -174,7 +191,8 @@ std::vector<Vec3> sample_surface(const Mesh& mesh, double spacing) {
         u = 1.0 - u;
         v = 1.0 - v;
       }
-      out.push_back(a + u * ab + v * ac);
+      const Vec3 p = a + u * ab + v * ac;
+      if (inside(p)) out.push_back(p);
     }
   }
   return out;
@@ -204,10 +222,7 @@ namespace {
 std::vector<double> one_way(const Mesh& from, const SurfaceDistance& to, const DistanceOptions& options,
                             const std::function<bool(const Vec3&)>& keep) {
   std::vector<double> d;
-  for (const Vec3& p : sample_surface(from, options.spacing)) {
-    if (options.region &&
-        ((p.array() < options.region->min.array()).any() || (p.array() > options.region->max.array()).any()))
-      continue;
+  for (const Vec3& p : sample_surface(from, options.spacing, options.region)) {
     if (keep && !keep(p)) continue;
     d.push_back(to.distance(p));
   }

@@ -62,8 +62,11 @@ private:
 
 //! Points spread over a mesh's surface: every triangle gets points in proportion to its area, placed
 //! on a deterministic low-discrepancy pattern (the same mesh gives the same points), about one per
-//! `spacing`² of area; triangles' vertices are included. A point cloud gives its own points.
-[[nodiscard]] std::vector<Vec3> sample_surface(const Mesh& mesh, double spacing);
+//! `spacing`² of area; triangles' vertices are included. A point cloud gives its own points. With
+//! `within`, only those inside that box (bounds included), in the same order: a triangle whose box misses
+//! it is not sampled at all (a bust measured on its face).
+[[nodiscard]] std::vector<Vec3> sample_surface(const Mesh& mesh, double spacing,
+                                               const std::optional<Box>& within = std::nullopt);
 
 struct DistanceStats {
   double mean = 0.0;

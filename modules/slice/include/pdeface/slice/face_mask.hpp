@@ -27,6 +27,12 @@ struct FaceMask {
     const double u = p.x() / half_width, w = (p.y() - centre_y) / half_height;
     return u * u + w * w <= 1.0 && p.z() >= min_z;
   }
+  //! The box the ellipse lies in (z from `min_z` up), a millionth wider on each side so that every point
+  //! `contains` takes lies in it whatever the rounding: what to look at before asking `contains`.
+  [[nodiscard]] Box box() const {
+    const double x = half_width * (1.0 + 1e-6), y = half_height * (1.0 + 1e-6);
+    return {{-x, centre_y - y, min_z}, {x, centre_y + y, std::numeric_limits<double>::infinity()}};
+  }
   //! The heights [bottom, top] the ellipse spans at `x`; nullopt beyond its sides.
   [[nodiscard]] std::optional<std::array<double, 2>> heights_at(double x) const;
   //! The same ellipse with its axes scaled by `across` and `along` about its centre.
