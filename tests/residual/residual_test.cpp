@@ -2,6 +2,7 @@
 // the bytes, a target error met as measured (the scans from $PDEFACE_DATA; skipped without them).
 
 #include "pdeface/align/pipeline.hpp"
+#include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/metrics/fidelity.hpp"
 #include "pdeface/pdef/mesh.hpp"
@@ -195,6 +196,27 @@ TEST(ResidualRealScan, TheOffsetsAreTheScansDistanceAlongTheNormal) {
     ++checked;
   }
   EXPECT_GT(checked, 500u);
+}
+
+// The trim goes into a file whole when it takes at most half its layer, else not at all: at 1 KB on 5 %
+// curves the ICT scans' trims (~175-190 B of a ~440 B layer) hold their nostrils' openings, which the
+// layer bridged 3.5-4.4 mm off (docs/compare.md, "The residual layer").
+TEST(ResidualSampleFace, TheTrimIsKeptWhenItTakesAtMostHalfTheLayer) {
+  const Mesh scan = sample_face();
+  pipeline::EncodeRequest request;
+  request.check.reset();
+  request.profiles.ratio = pipeline::kResidualRatio;
+  request.residual.size_bytes = 2048; // the 1 mm grid of every layer below 6 KB, so the same trim
+  const pipeline::EncodeOutcome whole = pipeline::encode_request(scan, request).value();
+  const std::size_t trim = whole.residual->trim_bytes;
+  ASSERT_GT(trim, 0U) << "the sample face's open mouth and eyes are trimmed";
+  const std::size_t curves = whole.encoded.bytes.size() - whole.residual->layer_bytes;
+  for (const auto& [layer, kept] : {std::pair{2 * trim, true}, std::pair{2 * trim - 1, false}}) {
+    request.residual.size_bytes = curves + layer;
+    const pipeline::EncodeOutcome made = pipeline::encode_request(scan, request).value();
+    EXPECT_EQ(made.residual->trim_bytes, kept ? trim : 0U) << layer << " bytes of layer";
+    EXPECT_LE(made.encoded.bytes.size(), curves + layer);
+  }
 }
 
 } // namespace
