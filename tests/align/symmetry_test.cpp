@@ -9,8 +9,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <set>
 #include <vector>
 
 namespace pdeface::align::detail {
@@ -62,6 +65,31 @@ TEST(Symmetry, TrimmedMirrorRmsIsItsDefinitionOnGoodAndBadPlanes) {
     EXPECT_NEAR(rms, expected, 1e-12 * std::max(1.0, expected)) << "outliers, keep " << keep;
   }
   EXPECT_TRUE(std::isinf(mirror_rms(mirror_of(planes[0]), {}, index, 0.7)));
+}
+
+// One point per occupied voxel: the first of each, in the order the points come (its plain definition, with
+// a set of voxels), on points on both sides of every axis (negative voxel coordinates) and repeated ones.
+TEST(Symmetry, VoxelSubsampleKeepsTheFirstPointOfEachVoxel) {
+  Mesh face = sample_face({.spacing_mm = 1.0});
+  for (std::size_t i = 0; i < face.positions.size(); i += 5)
+    face.positions.push_back(-face.positions[i]);   // the other octants
+  face.positions.push_back(face.positions.front()); // a repeat
+  for (const double cell : {0.7, 3.0, 25.0}) {
+    std::set<std::array<std::int64_t, 3>> seen;
+    std::vector<Vec3> want;
+    for (const Vec3& p : face.positions) {
+      const Eigen::Vector3d k = (p / cell).array().floor();
+      if (seen.insert({static_cast<std::int64_t>(k.x()), static_cast<std::int64_t>(k.y()),
+                       static_cast<std::int64_t>(k.z())})
+              .second)
+        want.push_back(p);
+    }
+    const std::vector<Vec3> got = voxel_subsample(face.positions, cell);
+    ASSERT_EQ(got.size(), want.size()) << "cell " << cell;
+    for (std::size_t i = 0; i < got.size(); ++i)
+      ASSERT_EQ(got[i], want[i]) << "cell " << cell << ", point " << i;
+  }
+  EXPECT_TRUE(voxel_subsample({}, 1.0).empty());
 }
 
 // The grid's distance is a point's distance (never less than the nearest's), the nearest's for queries near

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <vector>
 
 namespace pdeface {
 namespace {
@@ -41,6 +42,33 @@ TEST(PointIndex, AgreesWithBruteForce) {
     std::ranges::sort(ids);
     EXPECT_EQ(ids, brute_within(face.positions, q, 12.0));
   }
+}
+
+// The k nearest into a buffer a loop re-uses are the k nearest returned, to the bit, for a few (found on
+// the stack) and for many (more than the stack holds), and the buffer is replaced, not appended to.
+TEST(PointIndex, NearestIntoABufferIsTheNearestReturned) {
+  const Mesh face = sample_face({.spacing_mm = 3.0});
+  const PointIndex index(face.positions);
+  std::vector<PointIndex::Neighbour> buffer(100, {7, 7.0});
+  for (const Vec3& q : {Vec3(0, 0, 30), Vec3(-31.3, 27.1, -5), Vec3(500, 0, 0)})
+    for (const std::size_t k : {1U, 2U, 8U, 16U, 17U, 40U}) {
+      const std::vector<PointIndex::Neighbour> returned = index.nearest(q, k);
+      index.nearest(q, k, buffer);
+      ASSERT_EQ(buffer.size(), k);
+      ASSERT_EQ(returned.size(), k);
+      for (std::size_t i = 0; i < k; ++i) {
+        EXPECT_EQ(buffer[i].index, returned[i].index) << "k " << k;
+        EXPECT_EQ(buffer[i].distance, returned[i].distance) << "k " << k;
+      }
+      // The k-th nearest is no nearer than any point left out.
+      std::vector<double> all;
+      for (const Vec3& p : face.positions)
+        all.push_back((p - q).norm());
+      std::ranges::nth_element(all, all.begin() + static_cast<std::ptrdiff_t>(k - 1));
+      EXPECT_DOUBLE_EQ(buffer.back().distance, all[k - 1]) << "k " << k;
+    }
+  index.nearest(Vec3(0, 0, 30), 3 * face.vertex_count(), buffer); // more than it holds: all of them
+  EXPECT_EQ(buffer.size(), face.vertex_count());
 }
 
 // A search from a guess and a bounded one give what a full search gives, to the bit: the symmetry search

@@ -9,7 +9,6 @@
 #include <limits>
 #include <numbers>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace pdeface::align::detail {
 
@@ -238,8 +237,9 @@ Mirror refine(Mirror m, std::span<const Vec3> points, std::span<const Vec3> all,
   std::vector<double> reach(n);
   std::vector<Vec3> from(n);
   std::vector<std::size_t> last(n);
+  std::vector<PointIndex::Neighbour> found;
   const auto search = [&](std::size_t i) {
-    const std::vector<PointIndex::Neighbour> found = index.nearest(moved[i], cached);
+    index.nearest(moved[i], cached, found);
     for (std::size_t k = 0; k < cached; ++k)
       near[i * cached + k] = found[std::min(k, found.size() - 1)].index;
     reach[i] = found.back().distance;
@@ -306,14 +306,27 @@ std::vector<Vec3> fibonacci_directions(int count, bool whole_sphere) {
 }
 
 std::vector<Vec3> voxel_subsample(std::span<const Vec3> points, double cell) {
-  std::unordered_map<std::uint64_t, std::size_t> seen;
+  // The voxels seen so far in an open-addressing table of keys (21 bits an axis: never all ones), at most
+  // half full: no allocation a point.
+  constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  unsigned bits = 4;
+  while ((std::size_t{1} << bits) < 2 * points.size())
+    ++bits;
+  const std::size_t slots = std::size_t{1} << bits;
+  std::vector<std::uint64_t> seen(slots, kEmpty);
   std::vector<Vec3> out;
   for (const Vec3& p : points) {
     const Eigen::Vector3d k = (p / cell).array().floor();
     const auto key = (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.x()) & 0x1FFFFF) << 42U) |
                      (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.y()) & 0x1FFFFF) << 21U) |
                      (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.z()) & 0x1FFFFF));
-    if (seen.emplace(key, out.size()).second) out.push_back(p);
+    auto slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> (64U - bits)); // Fibonacci hashing
+    while (seen[slot] != kEmpty && seen[slot] != key)
+      slot = (slot + 1) & (slots - 1);
+    if (seen[slot] == kEmpty) {
+      seen[slot] = key;
+      out.push_back(p);
+    }
   }
   return out;
 }
@@ -328,8 +341,11 @@ std::vector<Vec3> thin(std::span<const Vec3> points, std::size_t count) {
 
 double median_spacing(std::span<const Vec3> points, const PointIndex& index) {
   std::vector<double> d;
-  for (const Vec3& p : thin(points, 400))
-    d.push_back(index.nearest(p, 2).back().distance);
+  std::vector<PointIndex::Neighbour> found;
+  for (const Vec3& p : thin(points, 400)) {
+    index.nearest(p, 2, found);
+    d.push_back(found.back().distance);
+  }
   std::ranges::nth_element(d, d.begin() + static_cast<std::ptrdiff_t>(d.size() / 2));
   return d[d.size() / 2];
 }

@@ -1,5 +1,7 @@
 #include "pdeface/core/point_index.hpp"
 
+#include <array>
+
 #include <nanoflann.hpp>
 
 #include <cmath>
@@ -79,14 +81,31 @@ std::optional<PointIndex::Neighbour> PointIndex::nearest_within(const Vec3& quer
 }
 
 std::vector<PointIndex::Neighbour> PointIndex::nearest(const Vec3& query, std::size_t k) const {
+  std::vector<Neighbour> out;
+  nearest(query, k, out);
+  return out;
+}
+
+void PointIndex::nearest(const Vec3& query, std::size_t k, std::vector<Neighbour>& out) const {
   k = std::min(k, size());
-  std::vector<std::size_t> indices(k);
-  std::vector<double> squared(k);
-  k = tree_->index.knnSearch(query.data(), k, indices.data(), squared.data());
-  std::vector<Neighbour> out(k);
+  // A few neighbours (the usual query) found into arrays on the stack, more into the heap.
+  constexpr std::size_t kOnStack = 16;
+  std::array<std::size_t, kOnStack> few_indices{};
+  std::array<double, kOnStack> few_squared{};
+  std::vector<std::size_t> many_indices;
+  std::vector<double> many_squared;
+  std::size_t* indices = few_indices.data();
+  double* squared = few_squared.data();
+  if (k > kOnStack) {
+    many_indices.resize(k);
+    many_squared.resize(k);
+    indices = many_indices.data();
+    squared = many_squared.data();
+  }
+  k = tree_->index.knnSearch(query.data(), k, indices, squared);
+  out.resize(k);
   for (std::size_t i = 0; i < k; ++i)
     out[i] = {indices[i], std::sqrt(squared[i])};
-  return out;
 }
 
 std::vector<PointIndex::Neighbour> PointIndex::within(const Vec3& query, double radius) const {

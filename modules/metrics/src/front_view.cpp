@@ -25,8 +25,11 @@ double median_spacing(std::span<const Vec3> points) {
   const PointIndex index(points);
   const std::size_t stride = std::max<std::size_t>(1, points.size() / 2000);
   std::vector<double> gaps;
-  for (std::size_t i = 0; i < points.size(); i += stride)
-    if (const auto n = index.nearest(points[i], 2); n.size() == 2) gaps.push_back(n[1].distance);
+  std::vector<PointIndex::Neighbour> n;
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    index.nearest(points[i], 2, n);
+    if (n.size() == 2) gaps.push_back(n[1].distance);
+  }
   std::ranges::nth_element(gaps, gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2));
   return gaps[gaps.size() / 2];
 }

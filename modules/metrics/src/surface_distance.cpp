@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iterator>
+#include <map>
 #include <numeric>
 #include <stdexcept>
 
@@ -34,6 +35,29 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
   return a + ab * (vb / denom) + ac * (vc / denom);
 }
 
+namespace {
+
+// The nodes `build` makes for `n` triangles (median splits down to 4 a leaf), so that they are reserved
+// once: growing the vector past a guess copies it and holds both (38 MB for the 600k triangles of a
+// 16 KB file's mesh, against the 33.5 MB it needs). A level's ranges have at most two sizes.
+std::size_t node_count(std::size_t n) {
+  std::size_t nodes = 0;
+  std::map<std::size_t, std::size_t> level{{n, 1}}; // range size -> how many ranges of it
+  while (!level.empty()) {
+    std::map<std::size_t, std::size_t> next;
+    for (const auto& [size, count] : level) {
+      nodes += count;
+      if (size <= 4) continue;
+      next[size / 2] += count;
+      next[size - size / 2] += count;
+    }
+    level = std::move(next);
+  }
+  return nodes;
+}
+
+} // namespace
+
 SurfaceDistance::SurfaceDistance(const Mesh& mesh) : mesh_(&mesh) {
   if (mesh.positions.empty()) throw std::invalid_argument("SurfaceDistance: the mesh has no vertices");
   if (mesh.is_point_cloud()) {
@@ -48,7 +72,7 @@ SurfaceDistance::SurfaceDistance(const Mesh& mesh) : mesh_(&mesh) {
   }
   order_.resize(mesh.triangle_count());
   std::iota(order_.begin(), order_.end(), 0U);
-  nodes_.reserve(2 * mesh.triangle_count() / 4 + 1);
+  nodes_.reserve(node_count(mesh.triangle_count()));
   build(0, static_cast<std::uint32_t>(order_.size()), centroids);
 }
 

@@ -102,14 +102,16 @@ void RayCaster::visit(const Vec3& x, const Vec3& d, double reach, Visit&& on_hit
   const Vec3 inverse(1.0 / d.x(), 1.0 / d.y(), 1.0 / d.z());
   // Each entry: a node and the least |t| its box may hold; `on_hit` returns the bound below which a
   // crossing still matters (a nearest query narrows it, `all` keeps `reach`).
-  std::vector<std::pair<std::uint32_t, double>> stack;
+  // On the stack, not the heap: a query allocates nothing. A depth-first walk holds at most one entry a
+  // level and two at the deepest; median splits of 2^32 triangles are 31 levels deep.
+  std::array<std::pair<std::uint32_t, double>, 64> stack;
+  std::size_t top = 0;
   double bound = reach;
   const std::array<double, 2> root = clip(nodes_[0].box, x, inverse, -reach, reach);
   if (root[0] > root[1]) return;
-  stack.emplace_back(0, nearest_to_zero(root));
-  while (!stack.empty()) {
-    const auto [index, least] = stack.back();
-    stack.pop_back();
+  stack[top++] = {0, nearest_to_zero(root)};
+  while (top > 0) {
+    const auto [index, least] = stack[--top];
     if (least > bound) continue;
     const Node& node = nodes_[index];
     if (node.count > 0) {
@@ -127,11 +129,11 @@ void RayCaster::visit(const Vec3& x, const Vec3& d, double reach, Visit&& on_hit
     const double near_a = has_a ? nearest_to_zero(a) : 0.0, near_b = has_b ? nearest_to_zero(b) : 0.0;
     // The nearer box last, so that it is searched first.
     if (has_a && has_b && near_a < near_b) {
-      stack.emplace_back(node.right, near_b);
-      stack.emplace_back(node.first, near_a);
+      stack[top++] = {node.right, near_b};
+      stack[top++] = {node.first, near_a};
     } else {
-      if (has_a) stack.emplace_back(node.first, near_a);
-      if (has_b) stack.emplace_back(node.right, near_b);
+      if (has_a) stack[top++] = {node.first, near_a};
+      if (has_b) stack[top++] = {node.right, near_b};
     }
   }
 }

@@ -240,8 +240,9 @@ double point_spacing(std::span<const Vec3> points) {
   const PointIndex index(points);
   const std::size_t step = std::max<std::size_t>(1, points.size() / 2000);
   std::vector<double> nearest;
+  std::vector<PointIndex::Neighbour> found;
   for (std::size_t i = 0; i < points.size(); i += step) {
-    const auto found = index.nearest(points[i], 2);
+    index.nearest(points[i], 2, found);
     if (found.size() == 2) nearest.push_back(found[1].distance);
   }
   auto mid = nearest.begin() + static_cast<std::ptrdiff_t>(nearest.size() / 2);

@@ -36,6 +36,8 @@ public:
   [[nodiscard]] std::optional<Neighbour> nearest_within(const Vec3& query, double bound) const;
   //! The k nearest points, nearest first (fewer if the index holds fewer).
   [[nodiscard]] std::vector<Neighbour> nearest(const Vec3& query, std::size_t k) const;
+  //! The same into `out` (replaced), whose memory a loop of queries re-uses: no allocation a query.
+  void nearest(const Vec3& query, std::size_t k, std::vector<Neighbour>& out) const;
   //! Every point within `radius`, nearest first.
   [[nodiscard]] std::vector<Neighbour> within(const Vec3& query, double radius) const;
 
