@@ -6,6 +6,7 @@
 #include "pdeface/formats/formats.hpp"
 #include "pdeface_test.hpp"
 
+#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include <fstream>
@@ -39,6 +40,50 @@ TEST_F(PdefCli, EncodeWithALayerTakesTheFewestCurvePointsUnlessTold) {
       EXPECT_LE(slurp(work_ / "sized.pdef").size(), 2048U);
     }
   }
+}
+
+// `info` on a file with a residual layer says what the layer holds and that the counts are of the mesh
+// `decode` makes by default: the layer's own grid, not the curves' 1 mm one.
+TEST_F(PdefCli, InfoDescribesTheResidualLayer) {
+  ASSERT_EQ(run({"encode", path("face.ply"), "-o", path("layer.pdef"), "--size", "4096"}).exit_code, 0);
+  const Outcome i = run({"info", path("layer.pdef")});
+  ASSERT_EQ(i.exit_code, 0) << i.err;
+  EXPECT_NE(i.out.find("  residual        "), std::string::npos) << i.out;
+  EXPECT_NE(i.out.find("bit-planes reached, the stream whole"), std::string::npos) << i.out;
+  EXPECT_EQ(i.out.find("about 1 mm spacing"), std::string::npos) << i.out;
+  const Outcome j = run({"info", "--json", path("layer.pdef")});
+  ASSERT_EQ(j.exit_code, 0) << j.err;
+  const auto info = nlohmann::json::parse(j.out)[0];
+  const auto& residual = info["pdef"]["residual"];
+  ASSERT_TRUE(residual.is_object()) << j.out;
+  EXPECT_TRUE(residual["complete"].get<bool>());
+  EXPECT_EQ(residual["bytes_read"], residual["stream_bytes"]);
+  const auto width = residual["width"].get<std::size_t>(), height = residual["height"].get<std::size_t>();
+  EXPECT_NE(i.out.find(fmt::format("decoded on the layer's {} x {} grid", width, height)), std::string::npos)
+      << i.out;
+  // The counts are the default decode's: every node of the layer's grid but those of trimmed cells.
+  EXPECT_LE(info["vertices"].get<std::size_t>(), width * height);
+  EXPECT_GT(info["vertices"].get<std::size_t>(), width * height / 2);
+
+  // A prefix of the layer: the bytes read say so.
+  const std::string bytes = slurp(work_ / "layer.pdef");
+  const std::size_t offset = [&] {
+    for (const auto& s : info["pdef"]["sections"])
+      if (s["name"] == "residual stream") return s["offset"].get<std::size_t>();
+    return std::size_t{0};
+  }();
+  ASSERT_GT(offset, 0U) << j.out;
+  std::ofstream(work_ / "prefix.pdef", std::ios::binary) << bytes.substr(0, offset + 200);
+  const Outcome p = run({"info", path("prefix.pdef")});
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  EXPECT_NE(p.out.find("a prefix of the stream: 200 of "), std::string::npos) << p.out;
+
+  // Curves only: no layer, and the 1 mm note.
+  ASSERT_EQ(run({"encode", path("face.ply"), "-o", path("curves.pdef")}).exit_code, 0);
+  const Outcome c = run({"info", "--json", path("curves.pdef")});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_TRUE(nlohmann::json::parse(c.out)[0]["pdef"]["residual"].is_null()) << c.out;
+  EXPECT_NE(run({"info", path("curves.pdef")}).out.find("about 1 mm spacing"), std::string::npos);
 }
 
 TEST_F(PdefCli, EncodeInfoDecode) {

@@ -95,6 +95,22 @@ nlohmann::json to_json(const PdefInfo& info) {
     landmarks[l.name] = {l.position.x(), l.position.y(), l.position.z()};
   j["landmarks"] = landmarks;
   j["name"] = f.name;
+  if (f.residual) {
+    const pdef::Residual& r = *f.residual;
+    j["residual"] = {{"width", r.field.width},
+                     {"height", r.field.height},
+                     {"step_mm", r.step_mm},
+                     {"levels", r.levels},
+                     {"planes", r.planes},
+                     {"planes_read", r.planes_read},
+                     {"stream_bytes", r.stream_bytes},
+                     {"bytes_read", r.bytes_read},
+                     {"complete", r.complete},
+                     {"trim_bytes", r.trim_bytes},
+                     {"trimmed_cells", static_cast<std::size_t>(std::ranges::count(r.trimmed, 1))}};
+  } else {
+    j["residual"] = nullptr;
+  }
   nlohmann::json sections = nlohmann::json::array();
   for (const pdef::Section& s : info.sections)
     sections.push_back({{"name", s.name}, {"offset", s.offset}, {"bytes", s.bytes}});
@@ -132,7 +148,22 @@ void print_text(const PdefInfo& info) {
   for (const pdef::Section& s : info.sections)
     parts += fmt::format("{}{} {}", parts.empty() ? "" : ", ", s.name, s.bytes);
   fmt::print("  bytes           {}\n", parts);
-  fmt::print("  (the counts and the box above are the surface decoded at about 1 mm spacing)\n");
+  if (pdef::has_offsets(f)) {
+    const pdef::Residual& r = *f.residual;
+    fmt::print(
+        "  residual        {} x {} grid, finest step {:.4g} mm, {} wavelet levels, {} of {} bit-planes "
+        "reached, {}, {} cells trimmed\n",
+        r.field.width, r.field.height, r.step_mm, r.levels, r.planes_read, r.planes,
+        r.complete ? std::string("the stream whole")
+                   : fmt::format("a prefix of the stream: {} of {} bytes", r.bytes_read, r.stream_bytes),
+        std::ranges::count(r.trimmed, 1));
+    fmt::print(
+        "  (the counts and the box above are the surface with its residual layer, decoded on the layer's "
+        "{} x {} grid)\n",
+        r.field.width, r.field.height);
+  } else {
+    fmt::print("  (the counts and the box above are the surface decoded at about 1 mm spacing)\n");
+  }
 }
 
 void print_text(const fs::path& file, const formats::LoadedMesh& loaded, const MeshSummary& s) {
