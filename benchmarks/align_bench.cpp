@@ -42,13 +42,13 @@ const Mesh& scan(const std::string& name) {
   return it->second;
 }
 
-void detect(benchmark::State& state, const Mesh& mesh) {
+void detect(benchmark::State& state, const Mesh& mesh, unsigned threads = 1) {
   if (mesh.vertex_count() == 0) {
     state.SkipWithError("scan not available");
     return;
   }
   for (auto _ : state) {
-    auto found = align::detect_landmarks(mesh);
+    auto found = align::detect_landmarks(mesh, {.threads = threads});
     if (!found) state.SkipWithError(found.error().to_string().c_str());
     benchmark::DoNotOptimize(found);
   }
@@ -60,6 +60,10 @@ void detect_sample(benchmark::State& state) {
   detect(state, face);
 }
 void detect_scan(benchmark::State& state, const char* name) { detect(state, scan(name)); }
+// The same search on `state.range(0)` threads: its wall time (the landmarks are the same to the bit).
+void detect_on_threads(benchmark::State& state, const char* name) {
+  detect(state, scan(name), static_cast<unsigned>(state.range(0)));
+}
 void detect_facefuns_points(benchmark::State& state) {
   static const Mesh cloud = to_mesh(to_point_cloud(scan("facefuns_f18.ply")));
   detect(state, cloud);
@@ -97,6 +101,12 @@ void to_canonical_frame(benchmark::State& state) {
 
 BENCHMARK(detect_sample)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(detect_scan, facefuns, "facefuns_f18.ply")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(detect_on_threads, facefuns, "facefuns_f18.ply")
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(detect_facefuns_points)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(detect_scan, bust, "demosthenes.obj")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(detect_scan, bust_on_pedestal, "bust_man_wreath.obj")->Unit(benchmark::kMillisecond);

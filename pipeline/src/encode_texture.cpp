@@ -4,8 +4,7 @@
 
 #include "encode_texture.hpp"
 
-#include "parallel.hpp"
-
+#include "pdeface/core/parallel.hpp"
 #include "pdeface/image/image.hpp"
 #include "pdeface/metrics/colour.hpp"
 #include "pdeface/pde/displacement.hpp"
@@ -71,7 +70,7 @@ Result<Texels> sample_texels(const Mesh& scan, const pde::Surface& surface, doub
   for (pde::Displacement& c : channels)
     c = {width, height, std::vector<double>(width * height, 0.0)};
   std::vector<std::uint8_t> found(width * height, 0);
-  detail::parallel_for(height, 0, [&](std::size_t y) {
+  parallel_for(height, 0, [&](std::size_t y) {
     for (std::size_t x = 0; x < width; ++x) {
       const std::size_t p = y * width + x;
       const residual::Hit hit =

@@ -5,6 +5,7 @@
 
 #include "pdeface/align/crop.hpp"
 #include "pdeface/align/frame.hpp"
+#include "pdeface/core/parallel.hpp"
 #include "pdeface/core/sample_face.hpp"
 #include "pdeface/formats/formats.hpp"
 #include "pdeface/image/image.hpp"
@@ -13,7 +14,6 @@
 #include "pdeface/pipeline/reconstruct.hpp"
 
 #include "heat_map.hpp"
-#include "parallel.hpp"
 #include "report_detail.hpp"
 #include "variants.hpp"
 
@@ -91,7 +91,8 @@ struct Prepared {
 
 Result<Prepared> prepare(const Mesh& scan, std::string_view name, const CompareOptions& options) {
   const auto named = [&](Error e) { return with_source(std::move(e), name); };
-  Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, name);
+  Result<align::Alignment> alignment =
+      align::align_scan(scan, std::nullopt, name, {}, {.threads = options.threads});
   if (!alignment) return named(std::move(alignment).error());
   CanonicalScan canonical = canonical_scan(scan, *alignment);
   Result<slice::ProfileSet> profiles = extract_profiles(canonical);
@@ -161,7 +162,7 @@ public:
   void measure_colour_on(const ColourYardstick* colour) { colour_ = colour; }
 
   void run(std::vector<Task>& tasks) const {
-    detail::parallel_for(tasks.size(), options_.threads, [&](std::size_t i) {
+    parallel_for(tasks.size(), options_.threads, [&](std::size_t i) {
       measure(tasks[i], tasks[i].make());
       tick_(tasks[i].variant.name);
     });
@@ -431,7 +432,7 @@ void add_rows(ScanReport& report, std::vector<Task>& tasks, std::vector<Task>& d
   for (const Task* t : order)
     if (t->keep_mesh && t->decoded && t->variant.fidelity) heated.push_back(t);
   std::vector<HeatMap> heat_maps(heated.size());
-  detail::parallel_for(heated.size(), options.threads, [&](std::size_t i) {
+  parallel_for(heated.size(), options.threads, [&](std::size_t i) {
     const Task& t = *heated[i];
     heat_maps[i] = detail::heat_map(measurer.in_canonical(*t.decoded), measurer.yardstick(),
                                     options.heat_max_mm, t.variant.name,
@@ -560,12 +561,12 @@ Report compare_scans(const CompareRequest& request) {
     if (request.progress) request.progress(progress);
   };
 
-  const unsigned workers = std::min<unsigned>(static_cast<unsigned>(count), detail::cores());
+  const unsigned workers = std::min<unsigned>(static_cast<unsigned>(count), cores());
   CompareOptions options = request.options;
-  if (options.threads == 0) options.threads = std::max(1U, detail::cores() / workers);
+  if (options.threads == 0) options.threads = std::max(1U, cores() / workers);
   const std::vector<std::string> names =
       sample ? std::vector<std::string>{"sample face"} : scan_names(request.inputs);
-  detail::parallel_for(count, workers, [&](std::size_t i) {
+  parallel_for(count, workers, [&](std::size_t i) {
     ScanReport& out = report.scans[i];
     const std::string& name = names[i];
     std::size_t done = 0;

@@ -1,8 +1,7 @@
 #include "pdeface/pipeline/table.hpp"
 
+#include "pdeface/core/parallel.hpp"
 #include "pdeface/pipeline/reconstruct.hpp"
-
-#include "parallel.hpp"
 
 #include <fmt/format.h>
 
@@ -73,7 +72,7 @@ Result<std::vector<TableRow>> table_rows(const Mesh& scan, const align::Alignmen
   }
   // Every row is independent (solving, meshing and measuring are pure): spread them over the cores.
   std::vector<TableRow> rows(sets.size() * options.schemes.size());
-  detail::parallel_for(rows.size(), 0, [&](std::size_t i) {
+  parallel_for(rows.size(), 0, [&](std::size_t i) {
     const std::size_t r = i / options.schemes.size(), s = i % options.schemes.size();
     rows[i] = measure_row(canonical.mesh, sets[r], options.ratios[r], options.schemes[s], options, source);
   });

@@ -32,6 +32,39 @@ TEST_P(RealScan, IsFoundWithConfidence) {
   }
 }
 
+// The search on several threads tries its hypotheses a few at a time and keeps their results in the
+// one-by-one order: the same landmarks, frame, plane and confidence to the bit. The bust on its pedestal
+// takes the most stages (local planes, every scale); on the coarse patch a result committed early makes a
+// later try unwanted (the test fails when it is committed all the same).
+class OnThreads : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(OnThreads, FindTheSameFaceToTheBit) {
+  PDEFACE_FACE_OR_SKIP(path, GetParam());
+  auto scan = formats::read_mesh(path);
+  ASSERT_TRUE(scan.ok()) << scan.error().to_string();
+  const Result<Detection> one = detect_landmarks(scan->mesh, {.threads = 1});
+  ASSERT_TRUE(one.ok()) << one.error().to_string();
+  for (const unsigned threads : {2U, 3U}) {
+    const Result<Detection> many = detect_landmarks(scan->mesh, {.threads = threads});
+    ASSERT_TRUE(many.ok()) << many.error().to_string();
+    for (std::size_t i = 0; i < kLandmarkCount; ++i) {
+      ASSERT_EQ(one->landmarks.points[i].has_value(), many->landmarks.points[i].has_value()) << i;
+      if (one->landmarks.points[i]) {
+        EXPECT_EQ(*one->landmarks.points[i], *many->landmarks.points[i]) << i;
+      }
+    }
+    EXPECT_EQ(one->frame.rotation, many->frame.rotation) << threads;
+    EXPECT_EQ(one->frame.translation, many->frame.translation) << threads;
+    EXPECT_EQ(one->frame.scale, many->frame.scale) << threads;
+    EXPECT_EQ(one->symmetry.normal, many->symmetry.normal) << threads;
+    EXPECT_EQ(one->confidence, many->confidence) << threads;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(SharedFaces, OnThreads,
+                         ::testing::Values("bust_man_wreath.obj", "fran_cut.wrl", "ict_05.ply"),
+                         test::FileParamName());
+
 INSTANTIATE_TEST_SUITE_P(SharedFaces, RealScan,
                          ::testing::Values("facefuns_f18.ply", "facefuns_m66.ply", "facefuns_f56_points.ply",
                                            "facefuns_m46.drc", "james.obj", "stfaces_neutral.wrl",

@@ -25,10 +25,11 @@ Result<formats::LoadedMesh> read_scan(const std::filesystem::path& in) {
 }
 
 Result<align::LandmarkSource> landmark_source(const std::filesystem::path& file) {
-  if (file.empty()) return align::LandmarkSource{};
+  // One command, one scan: detection may use every core.
+  if (file.empty()) return align::LandmarkSource{.detect = {.threads = 0}};
   Result<std::string> bytes = read_file(file);
   if (!bytes) return bytes.error();
-  return align::LandmarkSource{*std::move(bytes), file.string()};
+  return align::LandmarkSource{*std::move(bytes), file.string(), {}};
 }
 
 Result<ScanAndLandmarks> read_scan_and_landmarks(const std::filesystem::path& in,

@@ -3,6 +3,7 @@
 #include "search.hpp"
 #include "symmetry.hpp"
 
+#include "pdeface/core/parallel.hpp"
 #include "pdeface/core/point_index.hpp"
 #include "pdeface/core/topology.hpp"
 
@@ -12,7 +13,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 namespace pdeface::align {
 namespace {
@@ -45,6 +49,37 @@ constexpr int kMaxPiecesPerCut = 16;
 constexpr std::size_t kMaxProfilePoints = std::size_t{1} << 22;
 
 double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
+
+// A loop over items 0 … n − 1 as the search runs it one after the other: an item is tried when `wanted(i)`
+// (which may depend on what earlier items gave), its result handed to `commit(i, result)`, at most `room()`
+// more results taken. Here `threads` items are tried at once (0: every core): the next ones wanted as
+// things stand, then committed in order, each asked `wanted` again first (a result committed before it
+// may have made it unwanted: its try is wasted, and nothing is committed for it). A wanted item stays
+// wanted or becomes unwanted as results come in, never the other way, so the outcome is the one-by-one
+// loop's to the bit, whatever the number of threads. `attempt` must not throw.
+template <class Wanted, class Attempt, class Commit, class Room>
+void in_order(std::size_t n, unsigned threads, const Wanted& wanted, const Attempt& attempt,
+              const Commit& commit, const Room& room) {
+  using Tried = decltype(attempt(std::size_t{}));
+  const std::size_t width = threads == 0 ? cores() : threads;
+  std::size_t next = 0;
+  while (next < n) {
+    const std::size_t left = room();
+    if (left == 0) return;
+    std::vector<std::size_t> batch;
+    for (; next < n && batch.size() < std::min(width, left); ++next)
+      if (wanted(next)) batch.push_back(next);
+    if (batch.empty()) return;
+    std::vector<Tried> tried(batch.size());
+    parallel_for(batch.size(), static_cast<unsigned>(width),
+                 [&](std::size_t k) { tried[k] = attempt(batch[k]); });
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      if (room() == 0) return;
+      if (wanted(batch[k])) commit(batch[k], std::move(tried[k]));
+    }
+  }
+}
+constexpr auto kNoLimit = [] { return std::numeric_limits<std::size_t>::max(); };
 
 // ---- the scan ------------------------------------------------------------------------------------------
 
@@ -207,41 +242,51 @@ struct Candidate {
 // on the probe against the subsample; the best 16 distinct directions get a few registration steps (a
 // plane through the centroid may be offset from the face's), the best `count` of those are registered
 // fully. These find the face's plane when the face is most of the scan.
-std::vector<Plane> global_planes(const Scene& s, int directions, std::size_t count) {
+std::vector<Plane> global_planes(const Scene& s, int directions, std::size_t count, unsigned threads) {
   Vec3 centroid = Vec3::Zero();
   for (const Vec3& p : s.sample)
     centroid += p;
   centroid /= static_cast<double>(s.sample.size());
   const double still = 1e-5 * s.size;
 
-  std::vector<std::pair<double, Vec3>> scored;
-  for (const Vec3& n : detail::fibonacci_directions(directions))
-    scored.emplace_back(mirror_rms(mirror_of({n, n.dot(centroid)}), s.probe, *s.near), n);
+  const std::vector<Vec3> normals = detail::fibonacci_directions(directions);
+  std::vector<std::pair<double, Vec3>> scored(normals.size());
+  parallel_for(normals.size(), threads, [&](std::size_t i) {
+    const Vec3& n = normals[i];
+    scored[i] = {mirror_rms(mirror_of({n, n.dot(centroid)}), s.probe, *s.near), n};
+  });
   std::ranges::sort(scored, {}, &std::pair<double, Vec3>::first);
 
   const double distinct = std::cos(0.17); // 10 degrees
-  std::vector<std::pair<double, Plane>> rough;
   std::vector<Vec3> tried;
   for (const auto& entry : scored) {
     const Vec3& n = entry.second;
     if (tried.size() == 16) break;
     if (std::ranges::any_of(tried, [&](const Vec3& t) { return std::abs(t.dot(n)) > distinct; })) continue;
     tried.push_back(n);
+  }
+  std::vector<std::pair<double, Plane>> rough(tried.size());
+  parallel_for(tried.size(), threads, [&](std::size_t i) {
+    const Vec3& n = tried[i];
     const Mirror m = refine(mirror_of({n, n.dot(centroid)}), s.probe, s.sample, *s.coarse, 0.7, 6, still);
     const Plane plane = plane_of(m, s.probe);
-    rough.emplace_back(mirror_rms(mirror_of(plane), s.probe, *s.coarse), plane);
-  }
+    rough[i] = {mirror_rms(mirror_of(plane), s.probe, *s.coarse), plane};
+  });
   std::ranges::sort(rough, {}, &std::pair<double, Plane>::first);
   std::vector<Plane> planes;
-  for (const auto& entry : rough) {
-    const Plane& seed = entry.second;
-    if (planes.size() == count) break;
-    if (std::ranges::any_of(planes,
-                            [&](const Plane& q) { return std::abs(q.normal.dot(seed.normal)) > distinct; }))
-      continue;
-    planes.push_back(
-        plane_of(refine(mirror_of(seed), s.fit_points, s.sample, *s.coarse, 0.7, 30, still), s.fit_points));
-  }
+  in_order(
+      rough.size(), threads,
+      [&](std::size_t i) {
+        return !std::ranges::any_of(planes, [&](const Plane& q) {
+          return std::abs(q.normal.dot(rough[i].second.normal)) > distinct;
+        });
+      },
+      [&](std::size_t i) {
+        return plane_of(refine(mirror_of(rough[i].second), s.fit_points, s.sample, *s.coarse, 0.7, 30, still),
+                        s.fit_points);
+      },
+      [&](std::size_t, const Plane& plane) { planes.push_back(plane); },
+      [&] { return count - planes.size(); });
   return planes;
 }
 
@@ -641,7 +686,8 @@ public:
         stated_(fixed_scale_ ? std::optional<double>(millimetres_per(scan.units)) : std::nullopt),
         scales_(stated_ ? std::vector<double>{*stated_, *stated_ * kChildScale, *stated_ / kLargeAdultScale}
                         : candidate_scales(scene)),
-        mid_(scales_[scales_.size() / 2]), planes_(global_planes(scene, options.directions, kGlobalPlanes)) {
+        mid_(scales_[scales_.size() / 2]),
+        planes_(global_planes(scene, options.directions, kGlobalPlanes, options.threads)) {
     // The first scale: the file's, else the one its size suggests (`detect_units`: right for a face scan
     // in mm, cm or m); for units of no rule (a scan too large in any), the middle candidate.
     first_ = fixed_scale_ ? scales_.front() : millimetres_per(detect_units(scene.mesh));
@@ -682,11 +728,16 @@ private:
       if (const double fall = fall_around(scene_, e.point, e.direction, 1.0 / mid_); fall >= kMinFallMm)
         pointed.emplace_back(fall, e);
     std::ranges::sort(pointed, std::greater{}, &std::pair<double, Extreme>::first);
-    for (const auto& [fall, e] : pointed) {
-      if (locals_.size() == kMostLocalPlanes) break;
-      if (const std::optional<Plane> plane = local_plane(scene_, e.point, e.direction, 1.0 / mid_))
-        locals_.push_back({e, *plane});
-    }
+    in_order(
+        pointed.size(), options_.threads, [](std::size_t) { return true; },
+        [&](std::size_t i) {
+          const Extreme& e = pointed[i].second;
+          return local_plane(scene_, e.point, e.direction, 1.0 / mid_);
+        },
+        [&](std::size_t i, const std::optional<Plane>& plane) {
+          if (plane) locals_.push_back({pointed[i].second, *plane});
+        },
+        [&] { return kMostLocalPlanes - locals_.size(); });
   }
 
   // The seeds at scale `mm`: every nose-like point on the global planes' profiles and the best one on
@@ -721,20 +772,27 @@ private:
   // found on it again, and the landmarks it implies verified on a coarse depth map.
   void try_scale(double mm, bool on_planes, bool on_locals) {
     const double unit = 1.0 / mm;
-    for (const Candidate& seed : seeds_at(mm, on_planes, on_locals)) {
-      // A seed where an earlier scale's try ended up near this scale is tried already.
-      if (std::ranges::any_of(quick_, [&](const Hypothesis& h) {
-            return (h.candidate.nose.tip - seed.nose.tip).norm() < kTriedNoseMm * unit &&
+    const std::vector<Candidate> seeds = seeds_at(mm, on_planes, on_locals);
+    in_order(
+        seeds.size(), options_.threads,
+        [&](std::size_t i) { // a seed where an earlier try ended up near this scale is tried already
+          return !std::ranges::any_of(quick_, [&](const Hypothesis& h) {
+            return (h.candidate.nose.tip - seeds[i].nose.tip).norm() < kTriedNoseMm * unit &&
                    std::abs(std::log(h.verified.mm_per_unit / mm)) < std::log(kTriedScaleFactor);
-          }))
-        continue;
-      const std::optional<Candidate> c =
-          around_the_nose(scene_, seed.plane, seed.nose, unit, kQuickPoints, kQuickIterations);
-      if (!c) continue;
-      Hypothesis h{*c, verify(scene_, *c, mm, stated_, kVerifyRounds, kQuickCellMm)};
-      h.rank = rank(*c, h.verified);
-      quick_.push_back(std::move(h));
-    }
+          });
+        },
+        [&](std::size_t i) -> std::optional<Hypothesis> {
+          const std::optional<Candidate> c =
+              around_the_nose(scene_, seeds[i].plane, seeds[i].nose, unit, kQuickPoints, kQuickIterations);
+          if (!c) return std::nullopt;
+          Hypothesis h{*c, verify(scene_, *c, mm, stated_, kVerifyRounds, kQuickCellMm)};
+          h.rank = rank(*c, h.verified);
+          return h;
+        },
+        [&](std::size_t, std::optional<Hypothesis> h) {
+          if (h) quick_.push_back(*std::move(h));
+        },
+        kNoLimit);
   }
 
   // A face among the quick tries: symmetric, its landmarks on the average face, and (when the scale was a
@@ -757,20 +815,28 @@ private:
     };
     std::ranges::sort(quick_, std::greater{}, &Hypothesis::rank);
     std::vector<Hypothesis> hypotheses;
-    for (const Hypothesis& q : quick_) {
-      if (hypotheses.size() == kThoroughPerRound) break;
-      if (std::ranges::any_of(hypotheses, [&](const Hypothesis& h) { return same(h, q); }) ||
-          std::ranges::any_of(tried_, [&](const Hypothesis& h) { return same(h, q); }))
-        continue;
-      tried_.push_back(q);
-      const double mm = q.verified.mm_per_unit;
-      const std::optional<Candidate> c =
-          around_the_nose(scene_, q.candidate.plane, q.candidate.nose, 1.0 / mm);
-      if (!c) continue;
-      Hypothesis h{*c, verify(scene_, *c, mm, stated_, kVerifyRounds, kFinalCellMm, &q.verified.frame)};
-      h.rank = rank(*c, h.verified);
-      hypotheses.push_back(std::move(h));
-    }
+    in_order(
+        quick_.size(), options_.threads,
+        [&](std::size_t i) {
+          const Hypothesis& q = quick_[i];
+          return !std::ranges::any_of(hypotheses, [&](const Hypothesis& h) { return same(h, q); }) &&
+                 !std::ranges::any_of(tried_, [&](const Hypothesis& h) { return same(h, q); });
+        },
+        [&](std::size_t i) -> std::optional<Hypothesis> {
+          const Hypothesis& q = quick_[i];
+          const double mm = q.verified.mm_per_unit;
+          const std::optional<Candidate> c =
+              around_the_nose(scene_, q.candidate.plane, q.candidate.nose, 1.0 / mm);
+          if (!c) return std::nullopt;
+          Hypothesis h{*c, verify(scene_, *c, mm, stated_, kVerifyRounds, kFinalCellMm, &q.verified.frame)};
+          h.rank = rank(*c, h.verified);
+          return h;
+        },
+        [&](std::size_t i, std::optional<Hypothesis> h) {
+          tried_.push_back(quick_[i]);
+          if (h) hypotheses.push_back(*std::move(h));
+        },
+        [&] { return kThoroughPerRound - hypotheses.size(); });
     std::ranges::sort(hypotheses, std::greater{}, &Hypothesis::rank);
     for (const Hypothesis& h : hypotheses) {
       Result<Detection> found = finish(h);
@@ -937,9 +1003,9 @@ Result<Detection> detect_landmarks(const Mesh& scan, const DetectOptions& option
 }
 
 Result<Alignment> align_scan(const Mesh& scan, std::optional<Landmarks> given, std::string_view source,
-                             std::string_view landmarks_source) {
+                             std::string_view landmarks_source, const DetectOptions& detect) {
   if (!given) {
-    Result<Detection> found = detect_landmarks(scan);
+    Result<Detection> found = detect_landmarks(scan, detect);
     if (!found) {
       Error e = std::move(found).error();
       e.source = source;

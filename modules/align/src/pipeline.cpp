@@ -10,7 +10,7 @@
 namespace pdeface::align {
 
 Result<Alignment> align_from(const Mesh& scan, const LandmarkSource& landmarks, std::string_view source) {
-  if (!landmarks.bytes) return align_scan(scan, std::nullopt, source);
+  if (!landmarks.bytes) return align_scan(scan, std::nullopt, source, {}, landmarks.detect);
   Result<Landmarks> given = read_landmarks(*landmarks.bytes, landmarks.name);
   if (!given) return given.error();
   return align_scan(scan, *std::move(given), source, landmarks.name);

@@ -25,6 +25,9 @@ struct DetectOptions {
   int directions = 400;         //!< candidate symmetry-plane normals tried (spread over a hemisphere)
   double min_confidence = 0.35; //!< below this, detection fails with `NoFace`
   double min_fragment = 0.02;   //!< mesh pieces with fewer vertices than this fraction are ignored
+  //! Threads the search tries its hypotheses on (0: every core); the result is the same to the bit
+  //! whatever the count.
+  unsigned threads = 1;
 };
 
 //! A plane n · p = offset (`pdeface::Plane`), in the scan's frame and units.
@@ -66,9 +69,10 @@ struct Alignment {
 //! fitted to the given landmarks (in their units, else the scan's, else at the scale they give:
 //! `estimate_scale`) and the missing ones completed on the scan. Errors (with `source` set: the scan's name
 //! for detection, `landmarks_source` for given landmarks): those of `detect_landmarks` and
-//! `frame_from_landmarks`.
+//! `frame_from_landmarks`. `detect`: how detection runs.
 [[nodiscard]] Result<Alignment> align_scan(const Mesh& scan, std::optional<Landmarks> given = std::nullopt,
                                            std::string_view source = {},
-                                           std::string_view landmarks_source = {});
+                                           std::string_view landmarks_source = {},
+                                           const DetectOptions& detect = {});
 
 } // namespace pdeface::align

@@ -17,6 +17,7 @@ namespace pdeface::align {
 struct LandmarkSource {
   std::optional<std::string> bytes; //!< a landmark file's bytes (ours or menpo LJSON); empty: detect
   std::string name;                 //!< that file's name, for errors
+  DetectOptions detect;             //!< how detection runs when there are no bytes
 };
 
 //! `align_scan` from a landmark file's bytes (parsed here: bad bytes are an error naming `landmarks.name`)

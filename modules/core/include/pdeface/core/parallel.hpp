@@ -1,5 +1,7 @@
 #pragma once
-// Independent pieces of work spread over the cores (rows of a table, variants and scans of a comparison).
+//! \file
+//! Independent pieces of work spread over the cores (rows of a table, variants and scans of a comparison,
+//! the hypotheses of a landmark search).
 
 #include <algorithm>
 #include <atomic>
@@ -7,7 +9,7 @@
 #include <thread>
 #include <vector>
 
-namespace pdeface::pipeline::detail {
+namespace pdeface {
 
 //! The machine's cores (at least 1).
 [[nodiscard]] inline unsigned cores() { return std::max(1U, std::thread::hardware_concurrency()); }
@@ -27,4 +29,4 @@ template <class Work> void parallel_for(std::size_t n, unsigned threads, const W
   run();
 }
 
-} // namespace pdeface::pipeline::detail
+} // namespace pdeface
