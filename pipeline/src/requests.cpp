@@ -61,7 +61,8 @@ Result<ReconstructOutcome> reconstruct_request(const Mesh& scan, const Reconstru
 
 Result<std::vector<TableRow>> table_request(const Mesh& scan, const TableOptions& options,
                                             std::string_view source) {
-  Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, source);
+  // Like the rows, detection spreads over every core.
+  Result<align::Alignment> alignment = align::align_scan(scan, std::nullopt, source, {}, {.threads = 0});
   if (!alignment) return alignment.error();
   Result<std::vector<TableRow>> rows = table_rows(scan, *alignment, options, file_name(source));
   if (!rows) {
