@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <numbers>
 #include <optional>
@@ -56,7 +57,8 @@ double clamp01(double v) { return std::clamp(v, 0.0, 1.0); }
 // things stand, then committed in order, each asked `wanted` again first (a result committed before it
 // may have made it unwanted: its try is wasted, and nothing is committed for it). A wanted item stays
 // wanted or becomes unwanted as results come in, never the other way, so the outcome is the one-by-one
-// loop's to the bit, whatever the number of threads. `attempt` must not throw.
+// loop's to the bit, whatever the number of threads; an exception from `attempt` is thrown where that loop
+// would have met it (when its item is committed).
 template <class Wanted, class Attempt, class Commit, class Room>
 void in_order(std::size_t n, unsigned threads, const Wanted& wanted, const Attempt& attempt,
               const Commit& commit, const Room& room) {
@@ -71,11 +73,19 @@ void in_order(std::size_t n, unsigned threads, const Wanted& wanted, const Attem
       if (wanted(next)) batch.push_back(next);
     if (batch.empty()) return;
     std::vector<Tried> tried(batch.size());
-    parallel_for(batch.size(), static_cast<unsigned>(width),
-                 [&](std::size_t k) { tried[k] = attempt(batch[k]); });
+    std::vector<std::exception_ptr> failed(batch.size());
+    parallel_for(batch.size(), static_cast<unsigned>(width), [&](std::size_t k) {
+      try {
+        tried[k] = attempt(batch[k]);
+      } catch (...) {
+        failed[k] = std::current_exception();
+      }
+    });
     for (std::size_t k = 0; k < batch.size(); ++k) {
       if (room() == 0) return;
-      if (wanted(batch[k])) commit(batch[k], std::move(tried[k]));
+      if (!wanted(batch[k])) continue;
+      if (failed[k]) std::rethrow_exception(failed[k]);
+      commit(batch[k], std::move(tried[k]));
     }
   }
 }
