@@ -11,7 +11,24 @@
 #include <exception>
 #include <string>
 
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+
 namespace {
+
+// One command is one short process that allocates and frees maps, grids and meshes of 0.1-4 MB over and
+// over (detection tries hypotheses, the self-check grids). glibc's defaults hand such blocks back to the
+// system at every free, by munmap or by trimming the heap, and each reuse pays its page faults again;
+// its dynamic threshold only sometimes saves that, depending on the order of the frees. Fixed thresholds
+// keep freed blocks for reuse: encode on facefuns_f18 makes 6,100 -> 4,000 page faults, 7 % less time,
+// for 2.4 MB more peak memory.
+void keep_freed_memory() {
+#if defined(__GLIBC__)
+  mallopt(M_MMAP_THRESHOLD, 4 << 20);
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
+#endif
+}
 
 int run(int argc, char** argv) {
   using namespace pdeface::cli;
@@ -41,6 +58,7 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
+  keep_freed_memory();
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {

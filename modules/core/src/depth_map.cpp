@@ -142,24 +142,28 @@ void DepthMap::drop_pits(double depth, double reach) {
       after[i] = window(at + width + 1);
     }
   };
-  // Along each column (contiguous in z_) and each row (of a row-major copy), both ways: the front within
-  // reach before and after every cell.
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // Along each column (contiguous in z_), both ways: the front within reach before and after every cell.
+  // Then row by row (a copy of the row, taken before any cell of it is dropped): the fronts left and
+  // right, and the verdict. Two maps of scratch, not five: detection calls this once a hypothesis, and
+  // fresh maps cost more in page faults than the passes do in arithmetic.
   Eigen::MatrixXd below(z_.rows(), z_.cols()), above(z_.rows(), z_.cols());
   for (int c = 0; c < cols(); ++c)
     fronts(z_.col(c).data(), rows(), below.col(c).data(), above.col(c).data());
-  const RowMajor by_row = z_;
-  RowMajor left(z_.rows(), z_.cols()), right(z_.rows(), z_.cols());
-  for (int r = 0; r < rows(); ++r)
-    fronts(by_row.row(r).data(), cols(), left.row(r).data(), right.row(r).data());
-  for (int c = 0; c < cols(); ++c)
-    for (int r = 0; r < rows(); ++r) {
+  const auto row_length = static_cast<std::size_t>(cols());
+  std::vector<double> row(row_length), left(row_length), right(row_length);
+  for (int r = 0; r < rows(); ++r) {
+    for (int c = 0; c < cols(); ++c)
+      row[static_cast<std::size_t>(c)] = z_(r, c);
+    fronts(row.data(), cols(), left.data(), right.data());
+    for (int c = 0; c < cols(); ++c) {
       if (!known(r, c)) continue;
-      const double floor = z_(r, c) + depth;
-      const bool across = left(r, c) > floor && right(r, c) > floor;
+      const auto at = static_cast<std::size_t>(c);
+      const double floor = row[at] + depth;
+      const bool across = left[at] > floor && right[at] > floor;
       const bool along = below(r, c) > floor && above(r, c) > floor;
       if (across || along) z_(r, c) = std::numeric_limits<double>::quiet_NaN();
     }
+  }
 }
 
 void DepthMap::fill_holes(int max_gap) {
