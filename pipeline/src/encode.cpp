@@ -84,7 +84,7 @@ Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignmen
   Result<Mesh> mesh = pdef::to_mesh(*decoded, std::nullopt, request.source);
   if (!mesh) return named(std::move(mesh).error());
   Result<metrics::SelfCheck> check = encode_check(
-      canonical.mesh, out.profiles, align::to_canonical(*mesh, out.alignment.frame),
+      canonical.mesh, out.profiles, align::to_canonical(*std::move(mesh), out.alignment.frame),
       out.residual ? with_scans_folds(*request.check, canonical.mesh, out.profiles.mask) : *request.check,
       request.force, request.source);
   if (!check) return check.error();

@@ -138,7 +138,7 @@ Result<ResidualOutcome> add_residual(const CanonicalScan& scan, EncodeOutcome& o
       if (!decoded) return std::move(decoded).error();
       Result<Mesh> mesh = pdef::to_mesh(*decoded, std::nullopt, source);
       if (!mesh) return std::move(mesh).error();
-      return yardstick->measure(align::to_canonical(*mesh, outcome.alignment.frame));
+      return yardstick->measure(align::to_canonical(*std::move(mesh), outcome.alignment.frame));
     };
     const double target = *request.target_error_mm;
     Result<metrics::MeshFidelity> best = measure(largest);

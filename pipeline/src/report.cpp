@@ -111,7 +111,7 @@ Result<Mesh> variant_geometry(const Mesh& scan, const CanonicalScan& canonical, 
   if (options.crop_face) {
     Result<Mesh> face = align::crop_face(canonical.mesh, canonical.landmarks);
     if (!face) return with_source(std::move(face).error(), report.name);
-    Mesh back = align::to_scan(*face, canonical.frame);
+    Mesh back = align::to_scan(*std::move(face), canonical.frame);
     geometry.positions = std::move(back.positions);
     geometry.triangles = std::move(back.triangles);
     report.vertices = geometry.vertex_count();
@@ -335,7 +335,7 @@ Mesh colour_geometry(const Mesh& scan, const CanonicalScan& canonical, const Com
   Mesh out = scan;
   if (options.crop_face)
     if (Result<Mesh> face = align::crop_face(canonical.mesh, canonical.landmarks); face)
-      out = align::to_scan(*face, canonical.frame);
+      out = align::to_scan(*std::move(face), canonical.frame);
   out.normals.clear();
   out.material.reset();
   return out;

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <set>
+#include <utility>
+#include <vector>
 
 namespace pdeface {
 namespace {
@@ -34,6 +36,20 @@ TEST(Result, HoldsValueOrError) {
   Result<void> broken = make_error(ErrorCode::NonFinite, "nan");
   EXPECT_FALSE(broken);
   EXPECT_EQ(broken.error().message, "nan");
+}
+
+TEST(Result, DereferencingAnRvalueMovesTheValueOut) {
+  // The same buffer after `*std::move(r)`: moved, not copied (a copy has its own).
+  Result<std::vector<int>> made = std::vector<int>(1000, 7);
+  const int* buffer = made->data();
+  const std::vector<int> taken = *std::move(made);
+  EXPECT_EQ(taken.data(), buffer);
+  EXPECT_EQ(taken.size(), 1000U);
+  // An lvalue still copies.
+  Result<std::vector<int>> kept = std::vector<int>(10, 1);
+  const std::vector<int> copy = *kept;
+  EXPECT_NE(copy.data(), kept->data());
+  EXPECT_EQ(kept->size(), 10U);
 }
 
 TEST(ErrorCode, EveryCodeHasItsOwnName) {

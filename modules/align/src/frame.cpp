@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 namespace pdeface::align {
@@ -154,8 +155,7 @@ Result<ScaleEstimate> estimate_scale(const Landmarks& landmarks) {
 
 namespace {
 
-Mesh mapped(const Mesh& mesh, const auto& map_point, const Eigen::Matrix3d& normal_rotation, Units units) {
-  Mesh out = mesh;
+Mesh mapped(Mesh out, const auto& map_point, const Eigen::Matrix3d& normal_rotation, Units units) {
   for (Vec3& p : out.positions)
     p = map_point(p);
   const Eigen::Matrix3f r = normal_rotation.cast<float>();
@@ -167,14 +167,15 @@ Mesh mapped(const Mesh& mesh, const auto& map_point, const Eigen::Matrix3d& norm
 
 } // namespace
 
-Mesh to_canonical(const Mesh& scan, const FaceFrame& frame) {
+Mesh to_canonical(Mesh scan, const FaceFrame& frame) {
   return mapped(
-      scan, [&](const Vec3& p) { return frame.to_canonical(p); }, frame.rotation, Units::Millimetres);
+      std::move(scan), [&](const Vec3& p) { return frame.to_canonical(p); }, frame.rotation,
+      Units::Millimetres);
 }
 
-Mesh to_scan(const Mesh& canonical, const FaceFrame& frame) {
+Mesh to_scan(Mesh canonical, const FaceFrame& frame) {
   return mapped(
-      canonical, [&](const Vec3& p) { return frame.to_scan(p); }, frame.rotation.transpose(),
+      std::move(canonical), [&](const Vec3& p) { return frame.to_scan(p); }, frame.rotation.transpose(),
       frame.scan_units);
 }
 

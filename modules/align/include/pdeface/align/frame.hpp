@@ -65,10 +65,11 @@ inline constexpr double kUnitSnapFactor = 1.6;
 //! Errors: `InvalidArgument`.
 [[nodiscard]] Result<ScaleEstimate> estimate_scale(const Landmarks& landmarks);
 
-//! The mesh with positions (and normals) mapped into the canonical frame; units become mm.
-[[nodiscard]] Mesh to_canonical(const Mesh& scan, const FaceFrame& frame);
-//! The mesh mapped back from the canonical frame into the scan's frame and units.
-[[nodiscard]] Mesh to_scan(const Mesh& canonical, const FaceFrame& frame);
+//! The mesh with positions (and normals) mapped into the canonical frame; units become mm. Taken by
+//! value: a mesh moved in is mapped in place, without a second copy.
+[[nodiscard]] Mesh to_canonical(Mesh scan, const FaceFrame& frame);
+//! The mesh mapped back from the canonical frame into the scan's frame and units (in place if moved in).
+[[nodiscard]] Mesh to_scan(Mesh canonical, const FaceFrame& frame);
 //! Landmarks mapped into the canonical frame (units become mm).
 [[nodiscard]] Landmarks to_canonical(const Landmarks& scan, const FaceFrame& frame);
 

@@ -94,6 +94,9 @@ public:
   [[nodiscard]] T&& value() && { return std::get<0>(std::move(v_)); }
   T& operator*() & { return value(); }
   const T& operator*() const& { return value(); }
+  //! `*std::move(result)` moves the value out (as `std::optional` does); without this overload it bound
+  //! to the `const&` one and copied.
+  T&& operator*() && { return std::move(*this).value(); }
   T* operator->() { return &value(); }
   const T* operator->() const { return &value(); }
 
