@@ -21,8 +21,8 @@ namespace {
 // over (detection tries hypotheses, the self-check grids). glibc's defaults hand such blocks back to the
 // system at every free, by munmap or by trimming the heap, and each reuse pays its page faults again;
 // its dynamic threshold only sometimes saves that, depending on the order of the frees. Fixed thresholds
-// keep freed blocks for reuse: encode on facefuns_f18 makes 6,100 -> 4,000 page faults, 7 % less time,
-// for 2.4 MB more peak memory.
+// keep freed blocks for reuse: encode on facefuns_f18 makes 6,100 -> 4,000 page faults, 8 % less time,
+// for ~1 MB more peak memory (docs/performance.md, "Page faults").
 void keep_freed_memory() {
 #if defined(__GLIBC__)
   mallopt(M_MMAP_THRESHOLD, 4 << 20);
