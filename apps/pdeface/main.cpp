@@ -13,6 +13,45 @@
 
 #if defined(__GLIBC__)
 #include <malloc.h>
+#include <sys/mman.h>
+#endif
+
+#include <cstdint>
+#include <cstdlib>
+#include <new>
+
+// Blocks of 4 MB and more (a decoded mesh, its PLY bytes, a scan's BVH) on transparent huge pages where the
+// system offers them on request (Debian's default, `madvise`): one page fault per 2 MB instead of 512. Page
+// faults are what such a block costs most: `pdeface decode` of an 8 KB residual file (148k vertices) made
+// 4,640 of them in 80-84 ms, now ~3,100-3,600 in 58-62 ms (docs/performance.md, "Writing PLY"). glibc
+// does the same for every block with GLIBC_TUNABLES=glibc.malloc.hugetlb=1, which a program cannot set for
+// itself (Eigen's matrices come from malloc, not from here). The blocks come from malloc and go back by
+// free; not under the sanitizers, whose own operator new checks more.
+#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+namespace {
+constexpr std::size_t kHugeFrom = std::size_t{4} << 20; // glibc maps blocks this large on their own
+} // namespace
+
+void* operator new(std::size_t size) {
+  void* p = nullptr;
+  while ((p = std::malloc(size == 0 ? 1 : size)) == nullptr) {
+    std::new_handler handler = std::get_new_handler();
+    if (handler == nullptr) throw std::bad_alloc();
+    handler();
+  }
+  if (size >= kHugeFrom) {
+    constexpr std::uintptr_t kPage = 4096; // madvise takes a page-aligned start
+    const std::size_t into_page = reinterpret_cast<std::uintptr_t>(p) % kPage;
+    (void)madvise(static_cast<char*>(p) - into_page, size + into_page, MADV_HUGEPAGE);
+  }
+  return p;
+}
+// GCC takes any free() in an operator delete for a mismatch with operator new; this pair matches.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t /*size*/) noexcept { std::free(p); }
+#pragma GCC diagnostic pop
 #endif
 
 namespace {

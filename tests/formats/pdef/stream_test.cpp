@@ -29,7 +29,7 @@ TEST(PdefStream, BinaryPlyIsTheMeshPathsBytes) {
     std::filesystem::path in;
     std::size_t u, v;
   };
-  // Default grids, a tiny one, and one of many blocks (rows written ~1 MiB at a time).
+  // Default grids, a tiny one, and one of many blocks (rows written 256 KiB at a time).
   for (const Case& c : {Case{lossy, 0, 0}, Case{lossless, 0, 0}, Case{lossy, 2, 2}, Case{lossy, 700, 650}}) {
     const formats::ReadOptions options{.surface_u = c.u, .surface_v = c.v};
     const Result<formats::ConvertReport> report = formats::convert(c.in, dir / "streamed.ply", options);

@@ -1,6 +1,8 @@
-// Binary PLY written in pieces (ply/binary.hpp): the bytes `ply::write` gives the same mesh.
+// Binary PLY written in pieces (ply/binary.hpp): the bytes `ply::write` gives the same mesh, and those
+// OpenMesh's writer gives it (which `ply::write` used for every layout before it wrote these by itself).
 
 #include "pdeface/core/sample_face.hpp"
+#include "pdeface/openmesh_io/openmesh_io.hpp"
 #include "pdeface/ply/binary.hpp"
 #include "pdeface/ply/ply.hpp"
 
@@ -8,6 +10,37 @@
 
 namespace pdeface {
 namespace {
+
+// What OpenMesh's PLY writer makes of `mesh` (the reference `ply::write`'s own records must match), with
+// the units comment `ply::write` adds after the format line.
+std::string openmesh_bytes(const Mesh& mesh) {
+  std::string bytes =
+      openmesh_io::write_openmesh(mesh, {.extension = "ply", .binary = true, .normals = mesh.has_normals()},
+                                  "PLY", nullptr)
+          .value();
+  if (mesh.units != Units::Unknown)
+    bytes.insert(bytes.find('\n', bytes.find("\nformat ") + 1) + 1,
+                 "comment units " + std::string(to_string(mesh.units)) + "\n");
+  return bytes;
+}
+
+TEST(PlyBinary, WriteIsOpenMeshsBytesForEveryLayout) {
+  Mesh mesh;
+  mesh.positions = {Vec3(0, 0, 0), Vec3(1, 0.25, 0), Vec3(0, 1, 1e-7)};
+  for (const bool cloud : {false, true})
+    for (const Units units : {Units::Unknown, Units::Metres})
+      for (const bool normals : {false, true}) {
+        mesh.triangles = cloud ? std::vector<Triangle>{} : std::vector<Triangle>{Triangle{0, 1, 2}};
+        mesh.units = units;
+        mesh.normals = normals ? std::vector<Vec3f>(3, Vec3f(0, 0, 1)) : std::vector<Vec3f>{};
+        const std::string written = ply::write(mesh).value(), expected = openmesh_bytes(mesh);
+        EXPECT_EQ(written.size(), expected.size()) << cloud << normals << " " << to_string(units);
+        EXPECT_TRUE(written == expected) << cloud << normals << " " << to_string(units);
+      }
+  Mesh face = sample_face();
+  face.colors.clear();
+  EXPECT_TRUE(ply::write(face).value() == openmesh_bytes(face));
+}
 
 TEST(PlyBinary, PiecesAreTheWritersBytesForEveryLayout) {
   Mesh mesh;
