@@ -24,10 +24,10 @@ pdef::Face to_face(const slice::ProfileSet& profiles, const pde::Surface& surfac
   return face;
 }
 
-Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& request) {
+Result<EncodeOutcome> encode_request(Mesh scan, const EncodeRequest& request) {
   Result<align::Alignment> alignment = align::align_from(scan, request.landmarks, request.source);
   if (!alignment) return alignment.error();
-  return encode_aligned(scan, *std::move(alignment), request);
+  return encode_aligned(std::move(scan), *std::move(alignment), request);
 }
 
 Result<SlicedScan> slice_and_solve(const CanonicalScan& canonical, const EncodeRequest& request) {
@@ -68,9 +68,8 @@ Result<EncodeOutcome> encode_sliced(const CanonicalScan& canonical, align::Align
   return out;
 }
 
-Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignment,
-                                     const EncodeRequest& request) {
-  const CanonicalScan canonical = canonical_scan(scan, alignment);
+Result<EncodeOutcome> encode_aligned(Mesh scan, align::Alignment alignment, const EncodeRequest& request) {
+  const CanonicalScan canonical = canonical_scan(std::move(scan), alignment);
   Result<SlicedScan> sliced = slice_and_solve(canonical, request);
   if (!sliced) return std::move(sliced).error();
   Result<EncodeOutcome> made = encode_sliced(canonical, std::move(alignment), *sliced, request);

@@ -12,8 +12,8 @@ double height(const slice::ProfileSet& p) { return p.height_range[1] - p.height_
 
 } // namespace
 
-CanonicalScan canonical_scan(const Mesh& scan, const align::Alignment& alignment) {
-  return {align::to_canonical(scan, alignment.frame),
+CanonicalScan canonical_scan(Mesh scan, const align::Alignment& alignment) {
+  return {align::to_canonical(std::move(scan), alignment.frame),
           align::to_canonical(alignment.landmarks, alignment.frame), alignment.frame};
 }
 

@@ -190,7 +190,7 @@ int encode_scan(const std::filesystem::path& in, const std::filesystem::path& ou
   }
   Result<formats::LoadedMesh> scan = read_scan(in);
   if (!scan) return fail(scan.error());
-  Result<pipeline::EncodeOutcome> made = pipeline::encode_request(scan->mesh, request);
+  Result<pipeline::EncodeOutcome> made = pipeline::encode_request(std::move(scan->mesh), request);
   if (!made) return fail(made.error());
   const std::array<OutputFile, 1> outputs{OutputFile{out, made->encoded.bytes}};
   if (Result<void> ok = write_outputs(outputs); !ok) return fail(ok.error());

@@ -113,11 +113,13 @@ struct EncodeOutcome {
 
 //! `pdeface encode`: aligned (landmarks detected or from a file), then `encode_aligned`. Errors: those of
 //! each stage, naming `request.source`, and `SelfCheck` when the decoded file is off (unless `force`).
-[[nodiscard]] Result<EncodeOutcome> encode_request(const Mesh& scan, const EncodeRequest& request);
+//! `scan` by value: a scan moved in becomes the canonical one in place (a copy of a 490k-vertex scan was
+//! 29 of the 125 MB of heap `encode` peaked at).
+[[nodiscard]] Result<EncodeOutcome> encode_request(Mesh scan, const EncodeRequest& request);
 
 //! The same with the scan's `alignment` already made (`request.landmarks` unused): sliced, the surface's
 //! options resolved, encoded (`pdeface compare` aligns a scan once for all its variants).
-[[nodiscard]] Result<EncodeOutcome> encode_aligned(const Mesh& scan, align::Alignment alignment,
+[[nodiscard]] Result<EncodeOutcome> encode_aligned(Mesh scan, align::Alignment alignment,
                                                    const EncodeRequest& request);
 
 } // namespace pdeface::pipeline

@@ -21,7 +21,8 @@ struct CanonicalScan {
   align::Landmarks landmarks;
   align::FaceFrame frame;
 };
-[[nodiscard]] CanonicalScan canonical_scan(const Mesh& scan, const align::Alignment& alignment);
+//! (`scan` by value: a scan moved in is mapped in place, not copied.)
+[[nodiscard]] CanonicalScan canonical_scan(Mesh scan, const align::Alignment& alignment);
 
 //! `slice::extract_profiles` on a canonical scan.
 [[nodiscard]] Result<slice::ProfileSet> extract_profiles(const CanonicalScan& scan,
