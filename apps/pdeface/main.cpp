@@ -27,7 +27,15 @@
 // does the same for every block with GLIBC_TUNABLES=glibc.malloc.hugetlb=1, which a program cannot set for
 // itself (Eigen's matrices come from malloc, not from here). The blocks come from malloc and go back by
 // free; not under the sanitizers, whose own operator new checks more.
-#if defined(__GLIBC__) && !defined(__SANITIZE_ADDRESS__) && !defined(__SANITIZE_THREAD__)
+// GCC says so by __SANITIZE_*__, clang 14 only by __has_feature.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define PDEFACE_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define PDEFACE_SANITIZED 1
+#endif
+#endif
+#if defined(__GLIBC__) && !defined(PDEFACE_SANITIZED)
 namespace {
 constexpr std::size_t kHugeFrom = std::size_t{4} << 20; // glibc maps blocks this large on their own
 } // namespace
