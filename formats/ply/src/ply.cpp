@@ -70,13 +70,13 @@ Result<std::string> write(const Mesh& input, const WriteOptions& options, Notes*
         fmt::format("{} vertices on texture seams written once per texture coordinate: PLY's s t "
                     "are per vertex",
                     split));
+  const bool names_texture = !options.texture_file.empty() && mesh.has_texcoords();
+  if (!names_texture && mesh.material && mesh.material->base_color_image && notes)
+    notes->push_back("texture image dropped: PLY names one only beside texture coordinates, written by file");
   if (options.binary && !mesh.has_colors() && !mesh.has_texcoords()) {
     // The usual layout (positions, perhaps normals, triangles) as plain records (ply/binary.hpp): OpenMesh's
     // bytes (tests/formats/ply/binary_test.cpp), without its stream of one value at a time (a 150k-vertex
     // mesh: 52 of the 130 ms `pdeface decode` took).
-    if (mesh.material && mesh.material->base_color_image && notes)
-      notes->push_back(
-          "texture image dropped: PLY names one only beside texture coordinates, written by file");
     const BinaryLayout layout{mesh.vertex_count(), mesh.triangle_count(), mesh.has_normals(), mesh.units};
     std::string bytes = binary_header(layout);
     const std::size_t header = bytes.size();
@@ -100,10 +100,7 @@ Result<std::string> write(const Mesh& input, const WriteOptions& options, Notes*
   // looks for them.
   std::string comments;
   if (mesh.units != Units::Unknown) comments += fmt::format("comment units {}\n", to_string(mesh.units));
-  if (!options.texture_file.empty() && mesh.has_texcoords())
-    comments += fmt::format("comment TextureFile {}\n", clean_name(options.texture_file));
-  else if (mesh.material && mesh.material->base_color_image && notes)
-    notes->push_back("texture image dropped: PLY names one only beside texture coordinates, written by file");
+  if (names_texture) comments += fmt::format("comment TextureFile {}\n", clean_name(options.texture_file));
   const std::size_t format_end = bytes->find('\n', bytes->find("\nformat ") + 1);
   bytes->insert(format_end + 1, comments);
   return bytes;
