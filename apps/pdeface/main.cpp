@@ -2,6 +2,7 @@
 // and prints the outcome (apps/pdeface/commands/); this file only lists them.
 
 #include "commands/common.hpp"
+#include "pdeface/core/heap.hpp"
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -12,7 +13,6 @@
 #include <string>
 
 #if defined(__GLIBC__)
-#include <malloc.h>
 #include <sys/mman.h>
 #endif
 
@@ -23,21 +23,12 @@
 // Blocks of 4 MB and more (a decoded mesh, its PLY bytes, a scan's BVH) on transparent huge pages where the
 // system offers them on request (Debian's default, `madvise`): one page fault per 2 MB instead of 512. Page
 // faults are what such a block costs most: `pdeface decode` of an 8 KB residual file (148k vertices) made
-// 4,640 of them in 80-84 ms, now ~3,100-3,600 in 58-62 ms (docs/performance.md, "Writing PLY"). glibc
-// does the same for every block with GLIBC_TUNABLES=glibc.malloc.hugetlb=1, which a program cannot set for
-// itself (Eigen's matrices come from malloc, not from here). The blocks come from malloc and go back by
-// free; not under the sanitizers, whose own operator new checks more.
-// GCC says so by __SANITIZE_*__, clang 14 only by __has_feature.
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-#define PDEFACE_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
-#define PDEFACE_SANITIZED 1
-#endif
-#endif
+// 4,640 of them in 80-84 ms, now ~3,100-3,600 in 58-62 ms (docs/performance.md, "Writing PLY"). Smaller
+// blocks, and Eigen's from malloc, are on huge pages in the heap's first 60 MB (prepare_command_heap). The
+// blocks come from malloc and go back by free; not under the sanitizers, whose own operator new checks more.
 #if defined(__GLIBC__) && !defined(PDEFACE_SANITIZED)
 namespace {
-constexpr std::size_t kHugeFrom = std::size_t{4} << 20; // glibc maps blocks this large on their own
+constexpr std::size_t kHugeFrom = std::size_t{4} << 20; // mapped on their own once the heap's top is used
 } // namespace
 
 void* operator new(std::size_t size) {
@@ -63,19 +54,6 @@ void operator delete(void* p, std::size_t /*size*/) noexcept { std::free(p); }
 #endif
 
 namespace {
-
-// One command is one short process that allocates and frees maps, grids and meshes of 0.1-4 MB over and
-// over (detection tries hypotheses, the self-check grids). glibc's defaults hand such blocks back to the
-// system at every free, by munmap or by trimming the heap, and each reuse pays its page faults again;
-// its dynamic threshold only sometimes saves that, depending on the order of the frees. Fixed thresholds
-// keep freed blocks for reuse: encode on facefuns_f18 makes 6,100 -> 4,000 page faults, 8 % less time,
-// for ~1 MB more peak memory (docs/performance.md, "Page faults").
-void keep_freed_memory() {
-#if defined(__GLIBC__)
-  mallopt(M_MMAP_THRESHOLD, 4 << 20);
-  mallopt(M_TRIM_THRESHOLD, 64 << 20);
-#endif
-}
 
 int run(int argc, char** argv) {
   using namespace pdeface::cli;
@@ -105,7 +83,9 @@ int run(int argc, char** argv) {
 } // namespace
 
 int main(int argc, char** argv) {
-  keep_freed_memory();
+  // One command is one short process that allocates and frees maps, grids and meshes of 0.1-4 MB over and
+  // over: freed blocks kept for reuse, fresh ones on huge pages (core/heap.hpp).
+  (void)pdeface::prepare_command_heap();
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {
