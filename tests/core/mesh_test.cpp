@@ -110,6 +110,14 @@ TEST(Components, LabelsAndDroppingSmallPieces) {
   EXPECT_EQ(big.colors.size(), 6U);
   EXPECT_TRUE(validate(big).ok());
   EXPECT_EQ(drop_small_components(m, 0.2).vertex_count(), 9U); // the loose vertex goes, the triangle stays
+  // What is kept, as new indices: the strip's vertices first, then the lone triangle's; nothing when every
+  // piece is large enough.
+  constexpr std::uint32_t kGone = kDroppedVertex;
+  EXPECT_EQ(kept_component_vertices(m, 0.2), (std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5, 6, 7, 8, kGone}));
+  EXPECT_EQ(kept_component_vertices(m, 0.5),
+            (std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5, kGone, kGone, kGone, kGone}));
+  EXPECT_TRUE(kept_component_vertices(m, 0.1).empty());
+  EXPECT_EQ(drop_small_components(m, 0.1).vertex_count(), 10U);
 }
 
 } // namespace

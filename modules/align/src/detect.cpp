@@ -17,6 +17,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <vector>
 
 namespace pdeface::align {
@@ -97,7 +98,11 @@ constexpr auto kNoLimit = [] { return std::numeric_limits<std::size_t>::max(); }
 // subsample for the symmetry search whose spacing follows the scan's size (so the search does not
 // depend on the units).
 struct Scene {
-  Mesh mesh;
+  // The scan's geometry, loose fragments gone: the scan's own arrays when it has none, else `kept_*`.
+  std::span<const Vec3> positions;
+  std::span<const Triangle> triangles;
+  std::vector<Vec3> kept_positions;
+  std::vector<Triangle> kept_triangles;
   std::optional<PointIndex> index;
   double spacing = 0.0;     // median distance between neighbouring points
   double size = 0.0;        // bounding-box diagonal
@@ -111,18 +116,29 @@ struct Scene {
 
 Scene prepare(const Mesh& scan, const DetectOptions& options) {
   Scene s;
-  s.mesh = drop_small_components(scan, options.min_fragment);
-  s.mesh.normals.clear();
-  s.index.emplace(s.mesh.positions);
-  s.spacing = detail::median_spacing(s.mesh.positions, *s.index);
-  s.size = bounding_box(s.mesh).diagonal();
+  // Only the geometry, and only copied when fragments are dropped (a 490k-vertex scan's whole copy, with
+  // its normals, was 31 MB of encode's peak).
+  s.positions = scan.positions;
+  s.triangles = scan.triangles;
+  if (const std::vector<std::uint32_t> index = kept_component_vertices(scan, options.min_fragment);
+      !index.empty()) {
+    for (std::size_t v = 0; v < index.size(); ++v)
+      if (index[v] != kDroppedVertex) s.kept_positions.push_back(scan.positions[v]);
+    for (const Triangle& t : scan.triangles)
+      if (index[t[0]] != kDroppedVertex) s.kept_triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
+    s.positions = s.kept_positions;
+    s.triangles = s.kept_triangles;
+  }
+  s.index.emplace(s.positions);
+  s.spacing = detail::median_spacing(s.positions, *s.index);
+  s.size = bounding_box(s.positions).diagonal();
   const double voxel = std::max(s.size / 100.0, s.spacing);
-  s.sample = detail::voxel_subsample(s.mesh.positions, voxel);
+  s.sample = detail::voxel_subsample(s.positions, voxel);
   s.coarse.emplace(s.sample);
   s.near.emplace(s.sample, voxel);
   s.probe = detail::thin(s.sample, 300);
   s.fit_points = detail::thin(s.sample, 1000);
-  s.loops = detail::boundary_loops(s.mesh.triangles);
+  s.loops = detail::boundary_loops(s.triangles);
   return s;
 }
 
@@ -130,7 +146,7 @@ Scene prepare(const Mesh& scan, const DetectOptions& options) {
 std::vector<Vec3> patch(const Scene& s, const Vec3& centre, double radius, double cell) {
   std::vector<Vec3> near;
   for (const auto& n : s.index->within(centre, radius))
-    near.push_back(s.mesh.positions[n.index]);
+    near.push_back(s.positions[n.index]);
   return detail::voxel_subsample(near, cell);
 }
 
@@ -152,21 +168,21 @@ std::vector<Vec3> profile_of(const Scene& s, const Plane& plane, double slab, do
                              const Vec3* near = nullptr, double reach = 0.0) {
   std::vector<Vec3> out;
   const auto side = [&](const Vec3& p) { return plane.normal.dot(p) - plane.offset; };
-  if (s.mesh.triangles.empty()) {
+  if (s.triangles.empty()) {
     const auto take = [&](const Vec3& p) {
       if (std::abs(side(p)) <= slab) out.push_back(p);
     };
     if (near)
       for (const auto& n : s.index->within(*near, reach))
-        take(s.mesh.positions[n.index]);
+        take(s.positions[n.index]);
     else
-      for (const Vec3& p : s.mesh.positions)
+      for (const Vec3& p : s.positions)
         take(p);
     return out;
   }
   const double reach2 = reach * reach;
-  for (const Triangle& t : s.mesh.triangles) {
-    const std::array<Vec3, 3> v{s.mesh.positions[t[0]], s.mesh.positions[t[1]], s.mesh.positions[t[2]]};
+  for (const Triangle& t : s.triangles) {
+    const std::array<Vec3, 3> v{s.positions[t[0]], s.positions[t[1]], s.positions[t[2]]};
     if (near && (v[0] - *near).squaredNorm() > reach2) continue;
     const std::array<double, 3> h{side(v[0]), side(v[1]), side(v[2])};
     std::array<Vec3, 2> cut;
@@ -363,7 +379,7 @@ double fall_around(const Scene& s, const Vec3& tip, const Vec3& d, double unit) 
   double sum = 0.0;
   int n = 0;
   for (const auto& nb : s.index->within(tip, 25.0 * unit)) {
-    const Vec3 v = s.mesh.positions[nb.index] - tip;
+    const Vec3 v = s.positions[nb.index] - tip;
     const double behind = -d.dot(v);
     const Vec3 across = v + behind * d;
     const double side = across.norm();
@@ -403,8 +419,7 @@ std::optional<Plane> local_plane(const Scene& s, const Vec3& tip, const Vec3& d,
   if (seeds.size() > 3) seeds.resize(3);
   std::optional<std::pair<double, Plane>> best;
   for (const auto& [score, n] : seeds) {
-    const Mirror m =
-        refine(mirror_of({n, n.dot(tip)}), fit, s.mesh.positions, *s.index, 0.8, 20, 1e-3 * unit);
+    const Mirror m = refine(mirror_of({n, n.dot(tip)}), fit, s.positions, *s.index, 0.8, 20, 1e-3 * unit);
     const Plane plane = plane_of(m, fit);
     const double rms = mirror_rms(mirror_of(plane), probe, *s.index);
     if (!best || rms < best->first) best = {rms, plane};
@@ -425,8 +440,7 @@ std::optional<Candidate> around_the_nose(const Scene& s, const Plane& plane, con
   std::vector<Vec3> central = patch(s, tip, 70.0 * unit, 3.0 * unit);
   if (central.size() < 50) return std::nullopt;
   if (points > 0) central = detail::thin(central, points);
-  const Mirror m =
-      refine(mirror_of(plane), central, s.mesh.positions, *s.index, 0.95, iterations, 1e-3 * unit);
+  const Mirror m = refine(mirror_of(plane), central, s.positions, *s.index, 0.95, iterations, 1e-3 * unit);
   const Plane refined = plane_of(m, central);
   const double slab = std::max(1.0 * unit, 0.6 * s.spacing);
   const std::vector<Vec3> profile = profile_of(s, refined, slab, unit, &tip, 90.0 * unit);
@@ -542,7 +556,7 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, std::opt
   }
   for (const Similarity& start : starts) {
     const Landmarks found =
-        detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, start, cell, s.loops);
+        detail::search_landmarks(s.positions, s.triangles, s.spacing, start, cell, s.loops);
     const std::optional<Shape> shape = shape_of(found);
     if (shape && shape->rms_mm < best.shape_rms) {
       best = {found, mm_per_unit, shape->rms_mm, start};
@@ -561,7 +575,7 @@ Verified verify(const Scene& s, const Candidate& c, double mm_per_unit, std::opt
     frame = Similarity(*next);
     if (round == rounds) break;
     const Landmarks found =
-        detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame, cell, s.loops);
+        detail::search_landmarks(s.positions, s.triangles, s.spacing, frame, cell, s.loops);
     const std::optional<Shape> shape = shape_of(found);
     if (!shape) break;
     best = {found, frame.scale, shape->rms_mm, frame};
@@ -584,8 +598,7 @@ std::optional<Fitted> fit_landmarks(const Scene& s, const Similarity& start, dou
   Similarity frame = start.with_scale(mm_per_unit);
   std::optional<Fitted> fitted;
   for (int round = 0; round < 10; ++round) {
-    Landmarks found =
-        detail::search_landmarks(s.mesh.positions, s.mesh.triangles, s.spacing, frame, 1.0, s.loops);
+    Landmarks found = detail::search_landmarks(s.positions, s.triangles, s.spacing, frame, 1.0, s.loops);
     Result<FaceFrame> fit = frame_from_landmarks(found, mm_per_unit, units);
     if (!fit) break;
     const std::optional<Shape> shape = shape_of(found);
@@ -700,7 +713,7 @@ public:
         planes_(global_planes(scene, options.directions, kGlobalPlanes, options.threads)) {
     // The first scale: the file's, else the one its size suggests (`detect_units`: right for a face scan
     // in mm, cm or m); for units of no rule (a scan too large in any), the middle candidate.
-    first_ = fixed_scale_ ? scales_.front() : millimetres_per(detect_units(scene.mesh));
+    first_ = fixed_scale_ ? scales_.front() : millimetres_per(units_by_size(scene.size));
     if (scene.size * first_ > kMaxScanMm) first_ = mid_;
   }
 
@@ -930,7 +943,7 @@ private:
       out.nose_prominence_mm = around->nose.prominence;
     }
     out.fit_rms_mm = fitted.shape_rms;
-    out.eye_hollow_mm = detail::eye_hollowness(scene_.mesh.positions, scene_.mesh.triangles, scene_.spacing,
+    out.eye_hollow_mm = detail::eye_hollowness(scene_.positions, scene_.triangles, scene_.spacing,
                                                out.frame.with_scale(face_mm), out.landmarks)
                             .value_or(0.0);
     const Cues c = cues(out);

@@ -12,8 +12,10 @@
 namespace pdeface::align {
 
 Units detect_units(const Mesh& scan) {
-  if (scan.units != Units::Unknown) return scan.units;
-  const double diagonal = bounding_box(scan).diagonal();
+  return scan.units != Units::Unknown ? scan.units : units_by_size(bounding_box(scan).diagonal());
+}
+
+Units units_by_size(double diagonal) {
   if (diagonal < 2.0) return Units::Metres;
   if (diagonal < 60.0) return Units::Centimetres;
   return Units::Millimetres;

@@ -62,16 +62,25 @@ std::vector<std::uint32_t> component_labels(const Mesh& mesh) {
   return label;
 }
 
-Mesh drop_small_components(const Mesh& mesh, double min_fraction) {
-  if (mesh.is_point_cloud()) return mesh;
-  const std::vector<std::uint32_t> label = component_labels(mesh);
+std::vector<std::uint32_t> kept_component_vertices(const Mesh& mesh, double min_fraction) {
+  if (mesh.is_point_cloud()) return {};
+  std::vector<std::uint32_t> label = component_labels(mesh);
   std::vector<std::size_t> size;
   for (std::uint32_t l : label) {
     if (l >= size.size()) size.resize(l + 1, 0);
     ++size[l];
   }
   const auto min_size = static_cast<std::size_t>(min_fraction * static_cast<double>(mesh.vertex_count()));
-  std::vector<std::uint32_t> index(mesh.vertex_count(), UINT32_MAX);
+  if (std::ranges::all_of(size, [&](std::size_t n) { return n >= min_size; })) return {};
+  std::uint32_t next = 0;
+  for (std::uint32_t& l : label) // the labels become the new indices
+    l = size[l] < min_size ? kDroppedVertex : next++;
+  return label;
+}
+
+Mesh drop_small_components(const Mesh& mesh, double min_fraction) {
+  const std::vector<std::uint32_t> index = kept_component_vertices(mesh, min_fraction);
+  if (index.empty()) return mesh;
   Mesh out;
   out.units = mesh.units;
   out.name = mesh.name;
@@ -80,8 +89,7 @@ Mesh drop_small_components(const Mesh& mesh, double min_fraction) {
   const bool per_vertex_uv = mesh.has_texcoords() && !mesh.has_corner_texcoords();
   if (mesh.has_corner_texcoords()) out.texcoords = mesh.texcoords;
   for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (size[label[v]] < min_size) continue;
-    index[v] = static_cast<std::uint32_t>(out.positions.size());
+    if (index[v] == kDroppedVertex) continue;
     out.positions.push_back(mesh.positions[v]);
     if (mesh.has_normals()) out.normals.push_back(mesh.normals[v]);
     if (mesh.has_colors()) out.colors.push_back(mesh.colors[v]);
@@ -89,7 +97,7 @@ Mesh drop_small_components(const Mesh& mesh, double min_fraction) {
   }
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const Triangle& t = mesh.triangles[f];
-    if (index[t[0]] == UINT32_MAX) continue;
+    if (index[t[0]] == kDroppedVertex) continue;
     out.triangles.push_back({index[t[0]], index[t[1]], index[t[2]]});
     if (mesh.has_corner_texcoords()) out.texcoord_triangles.push_back(mesh.texcoord_triangles[f]);
   }

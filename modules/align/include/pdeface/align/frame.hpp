@@ -25,6 +25,8 @@ using FaceFrame = pdeface::FaceFrame;
 //! arbitrary units breaks it; detection and `align_scan` find the scale from the face itself
 //! (`estimate_scale`).
 [[nodiscard]] Units detect_units(const Mesh& scan);
+//! `detect_units`' guess for a scan of no stated units whose bounding box has this diagonal.
+[[nodiscard]] Units units_by_size(double diagonal);
 
 //! Where the landmarks sit on an average adult face, in the canonical frame (mm). The rigid fit aligns
 //! found landmarks onto these.

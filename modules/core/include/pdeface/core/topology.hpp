@@ -23,6 +23,14 @@ struct Topology {
 //! appearance, and a vertex on no triangle has a label of its own. Works on non-manifold meshes.
 [[nodiscard]] std::vector<std::uint32_t> component_labels(const Mesh& mesh);
 
+//! Marks a vertex that `kept_component_vertices` drops.
+inline constexpr std::uint32_t kDroppedVertex = UINT32_MAX;
+
+//! Each vertex's index among the vertices of the pieces that hold at least `min_fraction` of the mesh's
+//! vertices, or `kDroppedVertex`; empty when every vertex is kept (a point cloud's always are). What
+//! `drop_small_components` keeps, for a caller that needs only some of the mesh's arrays.
+[[nodiscard]] std::vector<std::uint32_t> kept_component_vertices(const Mesh& mesh, double min_fraction);
+
 //! The mesh without the pieces that hold fewer than `min_fraction` of its vertices (loose fragments,
 //! stray points); vertices re-indexed, attributes kept. A point cloud is returned unchanged.
 [[nodiscard]] Mesh drop_small_components(const Mesh& mesh, double min_fraction);
