@@ -3,7 +3,8 @@
 // a case with its bytes per second. scripts/bench.sh sums them per format (bytes over time) for issue 21's
 // reader targets (binary PLY >= 1 GB/s; ASCII PLY, OBJ, VRML >= 300 MB/s). The process's heap is the CLI's
 // (prepare_command_heap): freed blocks are kept, so a read after the first reuses warm pages and the rate
-// is the reader's own; a fresh process also pays its first touches (bench.sh's whole-process OBJ row).
+// is the reader's own; a fresh process also pays its first touches (docs/performance.md, "The heap on huge
+// pages", times `pdeface convert` of an OBJ whole).
 //
 //   build/benchmarks/readers_bench      (PDEFACE_DATA=/path/to/faces; nothing to measure without it)
 

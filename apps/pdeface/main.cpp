@@ -24,7 +24,7 @@
 // system offers them on request (Debian's default, `madvise`): one page fault per 2 MB instead of 512. Page
 // faults are what such a block costs most: `pdeface decode` of an 8 KB residual file (148k vertices) made
 // 4,640 of them in 80-84 ms, now ~3,100-3,600 in 58-62 ms (docs/performance.md, "Writing PLY"). Smaller
-// blocks, and Eigen's from malloc, are on huge pages in the heap's first 60 MB (prepare_command_heap). The
+// blocks, and Eigen's from malloc, are on huge pages in the heap's 60 MB top (prepare_command_heap). The
 // blocks come from malloc and go back by free; not under the sanitizers, whose own operator new checks more.
 #if defined(__GLIBC__) && !defined(PDEFACE_SANITIZED)
 namespace {

@@ -21,8 +21,9 @@ namespace pdeface {
 //! one page fault instead of 512 — what `GLIBC_TUNABLES=glibc.malloc.hugetlb=1` does for every block,
 //! which a process cannot set for itself. Blocks of any size are carved from that top while it has room.
 //! Process-wide: call it first thing in `main`, never from a library (a caller's process keeps its own
-//! settings). Returns whether the huge pages were asked for and granted (false without glibc, under
-//! sanitizers, whose allocators are their own, or when `madvise` refuses); the thresholds are set either way.
+//! settings). Returns whether the huge pages were asked for, `madvise` accepting (false without glibc,
+//! under sanitizers, whose allocators are their own, or when `madvise` refuses); the thresholds are set
+//! either way.
 bool prepare_command_heap();
 
 } // namespace pdeface
