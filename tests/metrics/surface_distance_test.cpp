@@ -24,6 +24,17 @@ double brute_distance_to_triangle(const Vec3& p, const Vec3& a, const Vec3& b, c
   return best;
 }
 
+// The distance to the mesh by testing every triangle.
+double nearest_by_every_triangle(const Mesh& mesh, const Vec3& p) {
+  double best = 1e300;
+  for (const Triangle& t : mesh.triangles)
+    best = std::min(
+        best,
+        (closest_point_on_triangle(p, mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]) - p)
+            .norm());
+  return best;
+}
+
 TEST(ClosestPoint, EveryVoronoiRegion) {
   const Vec3 a(0, 0, 0), b(4, 0, 0), c(1, 3, 0);
   // Inside the face, near each vertex, near each edge, above and below.
@@ -48,15 +59,34 @@ TEST(SurfaceDistance, AgreesWithTestingEveryTriangle) {
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (int k = 0; k < 300; ++k) {
     const Vec3 p(80 * u(rng), 110 * u(rng), 40 * u(rng));
-    double best = 1e300;
-    for (const Triangle& t : face.triangles)
-      best = std::min(
-          best,
-          (closest_point_on_triangle(p, face.positions[t[0]], face.positions[t[1]], face.positions[t[2]]) - p)
-              .norm());
+    const double best = nearest_by_every_triangle(face, p);
     const auto n = distance.nearest(p);
     EXPECT_NEAR(n.distance, best, 1e-12 * (1.0 + best));
     EXPECT_NEAR((n.point - p).norm(), n.distance, 1e-12 * (1.0 + best));
+  }
+}
+
+// The hierarchy's boxes are float, rounded outwards: far from the origin, where a float's step (0.06 mm at
+// 10^6) is larger than the queries' distances, every distance is still the exact one, to the bit of the
+// brute force's. The queries lie just inside a triangle's edge, a hair above it: its neighbour across the
+// edge is nearly as near, and a box rounded inwards would lose the triangle to it.
+TEST(SurfaceDistance, ExactWhereItsFloatBoxesRound) {
+  Mesh face = sample_face({.spacing_mm = 4.0});
+  const Vec3 far(1.0e6, -3.3e5, 7.0e4);
+  for (Vec3& p : face.positions)
+    p += far;
+  const SurfaceDistance distance(face);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (std::size_t k = 0; k < 3000; ++k) {
+    const Triangle& t = face.triangles[(k * 7919) % face.triangles.size()];
+    const Vec3 &a = face.positions[t[k % 3]], &b = face.positions[t[(k + 1) % 3]],
+               &c = face.positions[t[(k + 2) % 3]];
+    const Vec3 on_edge = a + u(rng) * (b - a);
+    const Vec3 inwards = (c - on_edge).normalized(), normal = (b - a).cross(c - a).normalized();
+    const Vec3 p = on_edge + 0.002 * inwards + (k % 2 == 0 ? 0.0 : 0.001) * normal;
+    const double best = nearest_by_every_triangle(face, p);
+    ASSERT_EQ(distance.distance(p), best) << k;
   }
 }
 
