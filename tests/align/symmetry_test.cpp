@@ -4,6 +4,7 @@
 
 #include "symmetry.hpp"
 
+#include "pdeface/core/point_index.hpp"
 #include "pdeface/core/sample_face.hpp"
 
 #include <gtest/gtest.h>
@@ -90,6 +91,23 @@ TEST(Symmetry, VoxelSubsampleKeepsTheFirstPointOfEachVoxel) {
       ASSERT_EQ(got[i], want[i]) << "cell " << cell << ", point " << i;
   }
   EXPECT_TRUE(voxel_subsample({}, 1.0).empty());
+}
+
+// A patch subsampled without listing its points is the subsample of the listed points, nearest first.
+TEST(Symmetry, VoxelSubsampleWithinIsTheSubsampleOfThePointsWithin) {
+  const Mesh face = sample_face({.spacing_mm = 1.5});
+  const PointIndex index(face.positions);
+  for (const double cell : {0.7, 3.0, 25.0})
+    for (const Vec3& centre : {Vec3(3.3, 1.7, 30), Vec3(-20.1, 35.3, 10.7)}) { // no two points equally near
+      std::vector<Vec3> listed;
+      for (const auto& n : index.within(centre, 60.0))
+        listed.push_back(face.positions[n.index]);
+      const std::vector<Vec3> want = voxel_subsample(listed, cell);
+      const std::vector<Vec3> got = voxel_subsample_within(index, face.positions, centre, 60.0, cell);
+      ASSERT_GT(want.size(), 1U);
+      EXPECT_EQ(got, want) << "cell " << cell;
+    }
+  EXPECT_TRUE(voxel_subsample_within(index, face.positions, Vec3(1e4, 0, 0), 1.0, 1.0).empty());
 }
 
 // The grid's distance is a point's distance (never less than the nearest's), the nearest's for queries near

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace pdeface {
@@ -42,6 +44,26 @@ TEST(PointIndex, AgreesWithBruteForce) {
     std::ranges::sort(ids);
     EXPECT_EQ(ids, brute_within(face.positions, q, 12.0));
   }
+}
+
+// Visiting the points within a radius visits within's points, each once, with the squared distance whose
+// root within gives.
+TEST(PointIndex, VisitWithinVisitsWithinsPoints) {
+  const Mesh face = sample_face({.spacing_mm = 3.0});
+  const PointIndex index(face.positions);
+  for (const Vec3& q : {Vec3(0, 0, 30), Vec3(-31.3, 27.1, -5), Vec3(500, 0, 0)}) {
+    std::vector<std::pair<std::size_t, double>> visited, listed;
+    index.visit_within(q, 25.0,
+                       [&](std::size_t i, double squared) { visited.emplace_back(i, std::sqrt(squared)); });
+    for (const auto& n : index.within(q, 25.0))
+      listed.emplace_back(n.index, n.distance);
+    std::ranges::sort(visited);
+    std::ranges::sort(listed);
+    EXPECT_EQ(visited, listed);
+  }
+  std::size_t all = 0;
+  index.visit_within(Vec3::Zero(), 1e6, [&](std::size_t, double) { ++all; });
+  EXPECT_EQ(all, face.vertex_count());
 }
 
 // The k nearest into a buffer a loop re-uses are the k nearest returned, to the bit, for a few (found on

@@ -144,10 +144,7 @@ Scene prepare(const Mesh& scan, const DetectOptions& options) {
 
 // The scan's points within `radius` of `centre`, one per voxel of `cell`.
 std::vector<Vec3> patch(const Scene& s, const Vec3& centre, double radius, double cell) {
-  std::vector<Vec3> near;
-  for (const auto& n : s.index->within(centre, radius))
-    near.push_back(s.positions[n.index]);
-  return detail::voxel_subsample(near, cell);
+  return detail::voxel_subsample_within(*s.index, s.positions, centre, radius, cell);
 }
 
 // ---- the nose on a symmetry profile --------------------------------------------------------------------

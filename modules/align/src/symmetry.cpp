@@ -305,29 +305,93 @@ std::vector<Vec3> fibonacci_directions(int count, bool whole_sphere) {
   return out;
 }
 
+namespace {
+
+// A voxel's key: 21 bits an axis, never all ones (the tables' empty slot).
+constexpr std::uint64_t kNoVoxel = ~std::uint64_t{0};
+std::uint64_t voxel_key(const Vec3& p, double cell) {
+  const Eigen::Vector3d k = (p / cell).array().floor();
+  return (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.x()) & 0x1FFFFF) << 42U) |
+         (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.y()) & 0x1FFFFF) << 21U) |
+         (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.z()) & 0x1FFFFF));
+}
+// Its slot in an open-addressing table of 2^bits slots (Fibonacci hashing, then the next free one).
+std::size_t voxel_slot(const std::vector<std::uint64_t>& keys, std::uint64_t key, unsigned bits) {
+  auto slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> (64U - bits));
+  while (keys[slot] != kNoVoxel && keys[slot] != key)
+    slot = (slot + 1) & (keys.size() - 1);
+  return slot;
+}
+
+} // namespace
+
 std::vector<Vec3> voxel_subsample(std::span<const Vec3> points, double cell) {
-  // The voxels seen so far in an open-addressing table of keys (21 bits an axis: never all ones), at most
-  // half full: no allocation a point.
-  constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+  // The voxels seen so far in a table at most half full: no allocation a point.
   unsigned bits = 4;
   while ((std::size_t{1} << bits) < 2 * points.size())
     ++bits;
-  const std::size_t slots = std::size_t{1} << bits;
-  std::vector<std::uint64_t> seen(slots, kEmpty);
+  std::vector<std::uint64_t> seen(std::size_t{1} << bits, kNoVoxel);
   std::vector<Vec3> out;
   for (const Vec3& p : points) {
-    const Eigen::Vector3d k = (p / cell).array().floor();
-    const auto key = (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.x()) & 0x1FFFFF) << 42U) |
-                     (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.y()) & 0x1FFFFF) << 21U) |
-                     (static_cast<std::uint64_t>(static_cast<std::int64_t>(k.z()) & 0x1FFFFF));
-    auto slot = static_cast<std::size_t>((key * 0x9E3779B97F4A7C15ULL) >> (64U - bits)); // Fibonacci hashing
-    while (seen[slot] != kEmpty && seen[slot] != key)
-      slot = (slot + 1) & (slots - 1);
-    if (seen[slot] == kEmpty) {
+    const std::uint64_t key = voxel_key(p, cell);
+    const std::size_t slot = voxel_slot(seen, key, bits);
+    if (seen[slot] == kNoVoxel) {
       seen[slot] = key;
       out.push_back(p);
     }
   }
+  return out;
+}
+
+std::vector<Vec3> voxel_subsample_within(const PointIndex& index, std::span<const Vec3> positions,
+                                         const Vec3& centre, double radius, double cell) {
+  // Each voxel's point nearest the centre (the first of it in nearest-first order; of equally near ones
+  // the first indexed), in a table kept at most half full, grown as voxels come.
+  struct Pick {
+    double squared;
+    std::size_t index;
+    bool operator<(const Pick& o) const {
+      return squared < o.squared || (squared == o.squared && index < o.index);
+    }
+  };
+  unsigned bits = 10;
+  std::vector<std::uint64_t> keys(std::size_t{1} << bits, kNoVoxel);
+  std::vector<Pick> picks(keys.size());
+  std::size_t used = 0;
+  index.visit_within(centre, radius, [&](std::size_t i, double squared) {
+    const std::uint64_t key = voxel_key(positions[i], cell);
+    std::size_t slot = voxel_slot(keys, key, bits);
+    if (keys[slot] == key) {
+      picks[slot] = std::min(picks[slot], Pick{squared, i});
+      return;
+    }
+    if (2 * (used + 1) > keys.size()) { // grow: every key to its slot in a table twice as large
+      std::vector<std::uint64_t> old_keys(std::size_t{1} << (bits + 1), kNoVoxel);
+      std::vector<Pick> old_picks(old_keys.size());
+      old_keys.swap(keys);
+      old_picks.swap(picks);
+      ++bits;
+      for (std::size_t k = 0; k < old_keys.size(); ++k)
+        if (old_keys[k] != kNoVoxel) {
+          const std::size_t to = voxel_slot(keys, old_keys[k], bits);
+          keys[to] = old_keys[k];
+          picks[to] = old_picks[k];
+        }
+      slot = voxel_slot(keys, key, bits);
+    }
+    keys[slot] = key;
+    picks[slot] = {squared, i};
+    ++used;
+  });
+  std::vector<Pick> chosen;
+  chosen.reserve(used);
+  for (std::size_t k = 0; k < keys.size(); ++k)
+    if (keys[k] != kNoVoxel) chosen.push_back(picks[k]);
+  std::sort(chosen.begin(), chosen.end());
+  std::vector<Vec3> out;
+  out.reserve(chosen.size());
+  for (const Pick& c : chosen)
+    out.push_back(positions[c.index]);
   return out;
 }
 

@@ -71,6 +71,11 @@ private:
 
 // One point per occupied voxel of size `cell`: an even subsample whatever the scan's density.
 [[nodiscard]] std::vector<Vec3> voxel_subsample(std::span<const Vec3> points, double cell);
+// The same of the points of `positions` (indexed by `index`) within `radius` of `centre`, nearest first,
+// without listing them: a patch of a large scan costs its voxels' memory, not its points'.
+[[nodiscard]] std::vector<Vec3> voxel_subsample_within(const PointIndex& index,
+                                                       std::span<const Vec3> positions, const Vec3& centre,
+                                                       double radius, double cell);
 // Every k-th point, about `count` of them.
 [[nodiscard]] std::vector<Vec3> thin(std::span<const Vec3> points, std::size_t count);
 // Median distance from a point to its nearest neighbour.

@@ -49,6 +49,21 @@ struct Closest {
   }
 };
 
+// nanoflann's result-set interface for every point nearer than a radius (its `RadiusResultSet`'s test),
+// each handed on as found.
+struct Visit {
+  double radius_squared;
+  const std::function<void(std::size_t, double)>* visit;
+  // NOLINTNEXTLINE(readability-identifier-naming): nanoflann's names
+  [[nodiscard]] double worstDist() const { return radius_squared; }
+  [[nodiscard]] bool full() const { return true; }
+  // NOLINTNEXTLINE(readability-identifier-naming)
+  bool addPoint(double squared, std::size_t i) {
+    if (squared < radius_squared) (*visit)(i, squared);
+    return true;
+  }
+};
+
 } // namespace
 
 PointIndex::PointIndex(std::span<const Vec3> points) : tree_(std::make_unique<Tree>(points)) {}
@@ -118,6 +133,12 @@ std::vector<PointIndex::Neighbour> PointIndex::within(const Vec3& query, double 
   for (const auto& [index, squared] : matches)
     out.push_back({index, std::sqrt(squared)});
   return out;
+}
+
+void PointIndex::visit_within(const Vec3& query, double radius,
+                              const std::function<void(std::size_t, double)>& visit) const {
+  Visit set{radius * radius, &visit};
+  tree_->index.findNeighbors(set, query.data(), nanoflann::SearchParams());
 }
 
 } // namespace pdeface

@@ -4,6 +4,7 @@
 
 #include "pdeface/core/mesh.hpp"
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -40,6 +41,10 @@ public:
   void nearest(const Vec3& query, std::size_t k, std::vector<Neighbour>& out) const;
   //! Every point within `radius`, nearest first.
   [[nodiscard]] std::vector<Neighbour> within(const Vec3& query, double radius) const;
+  //! The same points (nearer than `radius`), each given to `visit` with its squared distance as found,
+  //! in no order and nothing held: for a query that keeps little of many points.
+  void visit_within(const Vec3& query, double radius,
+                    const std::function<void(std::size_t index, double squared)>& visit) const;
 
   [[nodiscard]] std::size_t size() const noexcept;
 
