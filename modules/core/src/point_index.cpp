@@ -49,8 +49,9 @@ struct Closest {
   }
 };
 
-// nanoflann's result-set interface for every point nearer than a radius (its `RadiusResultSet`'s test),
-// each handed on as found.
+// nanoflann's result-set interface for every point nearer than a radius, each handed on as found: the
+// search passes on only points nearer than `worstDist()` (its `RadiusResultSet`'s test), so none is
+// tested here again.
 struct Visit {
   double radius_squared;
   const std::function<void(std::size_t, double)>* visit;
@@ -59,7 +60,7 @@ struct Visit {
   [[nodiscard]] bool full() const { return true; }
   // NOLINTNEXTLINE(readability-identifier-naming)
   bool addPoint(double squared, std::size_t i) {
-    if (squared < radius_squared) (*visit)(i, squared);
+    (*visit)(i, squared);
     return true;
   }
 };
