@@ -119,32 +119,41 @@ std::uint32_t SurfaceDistance::build(std::uint32_t begin, std::uint32_t end,
                                      std::vector<Eigen::Vector3f>& centroids) {
   const auto index = static_cast<std::uint32_t>(nodes_.size());
   nodes_.emplace_back();
-  Box box;
-  Eigen::Vector3f centre_min = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
-  Eigen::Vector3f centre_max = -centre_min;
-  for (std::uint32_t i = begin; i < end; ++i) {
-    for (std::uint32_t v : mesh_->triangles[order_[i]])
-      box.extend(mesh_->positions[v]);
-    centre_min = centre_min.cwiseMin(centroids[order_[i]]);
-    centre_max = centre_max.cwiseMax(centroids[order_[i]]);
-  }
-  for (int k = 0; k < 3; ++k) {
-    nodes_[index].lo[k] = round_down(box.min[k]);
-    nodes_[index].hi[k] = round_up(box.max[k]);
-  }
   if (end - begin <= 4) {
+    Box box;
+    for (std::uint32_t i = begin; i < end; ++i)
+      for (std::uint32_t v : mesh_->triangles[order_[i]])
+        box.extend(mesh_->positions[v]);
+    for (int k = 0; k < 3; ++k) {
+      nodes_[index].lo[k] = round_down(box.min[k]);
+      nodes_[index].hi[k] = round_up(box.max[k]);
+    }
     nodes_[index].index = begin;
     nodes_[index].count = end - begin;
     return index;
   }
   // Split at the median centroid along the longest side of the centroids' box.
+  Eigen::Vector3f centre_min = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+  Eigen::Vector3f centre_max = -centre_min;
+  for (std::uint32_t i = begin; i < end; ++i) {
+    centre_min = centre_min.cwiseMin(centroids[order_[i]]);
+    centre_max = centre_max.cwiseMax(centroids[order_[i]]);
+  }
   Eigen::Index axis = 0;
   (centre_max - centre_min).maxCoeff(&axis);
   const std::uint32_t middle = begin + (end - begin) / 2;
   std::nth_element(order_.begin() + begin, order_.begin() + middle, order_.begin() + end,
                    [&](std::uint32_t x, std::uint32_t y) { return centroids[x][axis] < centroids[y][axis]; });
-  build(begin, middle, centroids); // the left child: index + 1
-  nodes_[index].index = build(middle, end, centroids);
+  const std::uint32_t left = build(begin, middle, centroids); // index + 1
+  const std::uint32_t right = build(middle, end, centroids);
+  // The box of the children's boxes: rounding outwards is monotone, so this is the rounded box of the
+  // node's triangles, found without reading them again at every level.
+  Node& node = nodes_[index];
+  node.index = right;
+  for (int k = 0; k < 3; ++k) {
+    node.lo[k] = std::min(nodes_[left].lo[k], nodes_[right].lo[k]);
+    node.hi[k] = std::max(nodes_[left].hi[k], nodes_[right].hi[k]);
+  }
   return index;
 }
 
