@@ -37,16 +37,17 @@ Result<metrics::SelfCheck> encode_check(const Mesh& scan, const slice::ProfileSe
   if (samples.empty()) return refused("coverage: no sample of the scan lies in the face mask");
   const double covered_within = metrics::FidelityOptions{}.covered_within_mm;
 
+  // The hierarchies are built on every core, as an encode detects its landmarks (the same either way).
   metrics::MeshFidelity fidelity;
   {
-    const metrics::SurfaceDistance to_result(result);
+    const metrics::SurfaceDistance to_result(result, 0);
     std::size_t near = 0;
     for (const Vec3& p : samples)
       if (to_result.distance(p) <= covered_within) ++near;
     fidelity.coverage.share = static_cast<double>(near) / static_cast<double>(samples.size());
   }
   {
-    const metrics::SurfaceDistance to_scan(scan);
+    const metrics::SurfaceDistance to_scan(scan, 0);
     double sum = 0.0;
     std::size_t count = 0;
     for (const Vec3& p : metrics::sample_surface(result, step, mask.box()))

@@ -66,6 +66,33 @@ TEST(SurfaceDistance, AgreesWithTestingEveryTriangle) {
   }
 }
 
+// Built on several threads, the hierarchy is the same: every answer the same to the bit, the triangle
+// included where several are equally near (a query at a vertex is nearest to all its triangles, and the
+// one the search meets first says which order the tree holds them in).
+TEST(SurfaceDistance, BuiltOnThreadsIsTheSameHierarchy) {
+  const Mesh face = sample_face({.spacing_mm = 0.8});
+  ASSERT_GT(face.triangles.size(), 4U * 16384U); // split on threads at the root and below it
+  const SurfaceDistance one(face);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Vec3> queries;
+  for (std::size_t k = 0; k < 2000; ++k) {
+    queries.push_back(face.positions[(k * 7919) % face.positions.size()]);
+    queries.emplace_back(80 * u(rng), 110 * u(rng), 40 * u(rng));
+  }
+  for (const unsigned threads : {2U, 3U, 4U, 0U}) {
+    const SurfaceDistance many(face, threads);
+    for (const Vec3& q : queries) {
+      const SurfaceDistance::Nearest a = one.nearest(q), b = many.nearest(q);
+      ASSERT_EQ(a.triangle, b.triangle) << threads << " threads, " << q.transpose();
+      ASSERT_EQ(a.point, b.point);
+      ASSERT_EQ(a.distance, b.distance);
+    }
+  }
+  for (std::size_t k = 0; k < 50; ++k)
+    EXPECT_NEAR(one.distance(queries[2 * k + 1]), nearest_by_every_triangle(face, queries[2 * k + 1]), 1e-12);
+}
+
 // The hierarchy's boxes are float, rounded outwards: far from the origin, where a float's step (0.06 mm at
 // 10^6) is larger than the queries' distances, every distance is still the exact one, to the bit of the
 // brute force's. The queries lie just inside a triangle's edge, a hair above it: its neighbour across the

@@ -30,7 +30,8 @@ class SurfaceDistance {
 public:
   //! \pre `mesh` stays alive and unchanged while this object is used.
   //! \throw std::invalid_argument for a mesh without vertices.
-  explicit SurfaceDistance(const Mesh& mesh);
+  //! `threads`: how many build the hierarchy (0: every core); the same hierarchy whatever their number.
+  explicit SurfaceDistance(const Mesh& mesh, unsigned threads = 1);
 
   struct Nearest {
     Vec3 point;           //!< the nearest point of the surface
@@ -49,7 +50,8 @@ private:
     std::uint32_t count = 0; //!< leaf: number of triangles; inner: 0
   };
   void fit_tangent_planes();
-  std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::vector<Eigen::Vector3f>& centroids);
+  std::uint32_t build(std::uint32_t begin, std::uint32_t end, std::uint32_t at,
+                      const std::vector<Eigen::Vector3f>& centroids, unsigned threads);
 
   const Mesh* mesh_;
   std::optional<PointIndex> points_; //!< for a point cloud
