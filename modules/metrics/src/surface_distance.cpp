@@ -41,14 +41,14 @@ Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, cons
 
 namespace {
 
+// A range of fewer triangles is split and built on one thread: a thread costs ~0.1 ms, building 8,192
+// triangles about 1 ms.
+constexpr std::uint32_t kParallelBuildTriangles = 16384;
+
 // The nodes `build` makes for `n` triangles (median splits down to 4 a leaf), so that they are allocated
 // once (growing the vector past a guess copies it and holds both: 416,687 nodes, 13.3 MB, for the 601,560
 // triangles of a 16 KB file's mesh) and a right subtree's first node is known before the left one is
 // built. A level's ranges have at most two sizes.
-// Halves smaller than this are built on the thread that split them: a thread costs ~0.1 ms, a build of
-// 8,192 triangles about 1 ms.
-constexpr std::uint32_t kParallelBuildTriangles = 16384;
-
 std::size_t node_count(std::size_t n) {
   std::size_t nodes = 0;
   std::map<std::size_t, std::size_t> level{{n, 1}}; // range size -> how many ranges of it
